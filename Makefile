@@ -1,0 +1,109 @@
+# whittaker-teach: the two everyday commands are `make book` and `make test`.
+#
+#   make setup      install the package + [test,book] extras (editable) and
+#                   vendor MathJax 3 into build/vendor/mathjax (idempotent)
+#   make book       setup, build the site into _build/html, print the sledge derivation
+#   make test       setup, then unit + integration tests, doctests, nbval over the
+#                   stored notebook outputs, the site build and the browser test
+#   make notebooks  re-execute every notebook in book/ and exercises/ in place
+#   make clean      remove everything generated
+#
+# Pieces of `make test` can be run alone: unit, doctest, nbval, site, browser.
+
+SHELL := /bin/bash
+.SHELLFLAGS := -eu -o pipefail -c
+.DEFAULT_GOAL := help
+
+PYTHON ?= python
+MATHJAX_VERSION ?= 3.2.2
+# extra arguments for the unit/integration pytest run, e.g. PYTEST_ARGS="-n auto"
+PYTEST_ARGS ?=
+
+# `jupyter-book` through the current interpreter (no reliance on a console
+# script being on PATH, e.g. pyenv shims before a rehash)
+JUPYTER_BOOK := $(PYTHON) -c 'import sys; from jupyter_book.cli.main import main; sys.argv[0] = "jupyter-book"; sys.exit(main())'
+
+SETUP_STAMP := build/.setup.stamp
+MATHJAX_DIR := build/vendor/mathjax
+NOTEBOOK_DIRS := book exercises
+
+export PIP_DISABLE_PIP_VERSION_CHECK := 1
+
+.PHONY: help setup mathjax book site derive test unit doctest nbval browser notebooks clean
+
+help:
+	@sed -n '3,12p' Makefile | sed 's/^# \{0,1\}//'
+
+# ---------------------------------------------------------------- set-up
+setup: $(SETUP_STAMP) mathjax
+
+# Re-install when pyproject.toml changes, or when the package first appears.
+$(SETUP_STAMP): pyproject.toml $(wildcard whittaker_teach/__init__.py)
+	$(PYTHON) -m pip install -q --root-user-action=ignore -e ".[test,book]"
+	@mkdir -p $(@D) && touch $@
+
+mathjax:
+	@MATHJAX_VERSION=$(MATHJAX_VERSION) bash scripts/fetch_mathjax.sh $(MATHJAX_DIR)
+
+# ---------------------------------------------------------------- the book
+book: setup
+	@$(MAKE) --no-print-directory site derive
+
+site: setup
+	$(JUPYTER_BOOK) build . -W -n --keep-going
+
+derive: setup
+	$(PYTHON) -m whittaker_teach derive sledge
+
+# ---------------------------------------------------------------- tests
+# --keep-going: every part runs and reports even if an earlier one failed;
+# `make test` still fails if any part failed.
+test: setup
+	@$(MAKE) --no-print-directory --keep-going unit doctest nbval site browser
+
+# tests/unit and tests/integration; a folder without test files is skipped
+# (pytest would exit 5, "no tests collected").
+unit: setup
+	@dirs=""; \
+	for d in tests/unit tests/integration; do \
+	  if [ -n "$$(find $$d \( -name 'test_*.py' -o -name '*_test.py' \) -print -quit 2>/dev/null)" ]; then \
+	    dirs="$$dirs $$d"; \
+	  else echo "unit: no tests in $$d yet, skipped"; fi; \
+	done; \
+	if [ -n "$$dirs" ]; then \
+	  echo "PYTHONHASHSEED=0 $(PYTHON) -m pytest$$dirs -q $(PYTEST_ARGS)"; \
+	  PYTHONHASHSEED=0 $(PYTHON) -m pytest $$dirs -q $(PYTEST_ARGS); \
+	fi
+
+doctest: setup
+	@if [ -d whittaker_teach ] && grep -rqs --include='*.py' '>>>' whittaker_teach; then \
+	  echo "PYTHONHASHSEED=0 $(PYTHON) -m pytest --doctest-modules whittaker_teach -q"; \
+	  PYTHONHASHSEED=0 $(PYTHON) -m pytest --doctest-modules whittaker_teach -q; \
+	else echo "doctest: no doctests in whittaker_teach yet, skipped"; fi
+
+# Stored notebook outputs must match a fresh run (_build and checkpoints are
+# excluded by norecursedirs in pyproject.toml).
+nbval: setup
+	@dirs=""; \
+	for d in $(NOTEBOOK_DIRS); do \
+	  if [ -n "$$(find $$d -name '*.ipynb' -not -path '*/_build/*' -not -path '*/.ipynb_checkpoints/*' -print -quit 2>/dev/null)" ]; then \
+	    dirs="$$dirs $$d"; \
+	  else echo "nbval: no notebooks in $$d, skipped"; fi; \
+	done; \
+	if [ -n "$$dirs" ]; then \
+	  echo "PYTHONHASHSEED=0 $(PYTHON) -m pytest --nbval --nbval-current-env$$dirs -p no:randomly -q"; \
+	  PYTHONHASHSEED=0 $(PYTHON) -m pytest --nbval --nbval-current-env $$dirs -p no:randomly -q; \
+	fi
+
+# Headless Chromium against the site built into _build/html by `make site`.
+browser: setup
+	WT_REQUIRE_SITE=1 $(PYTHON) -m pytest tests/book -q
+
+# ---------------------------------------------------------------- notebooks
+notebooks: setup
+	PYTHONHASHSEED=0 $(PYTHON) scripts/execute_notebooks.py $(NOTEBOOK_DIRS)
+
+# ---------------------------------------------------------------- clean
+clean:
+	rm -rf _build build *.egg-info .pytest_cache .hypothesis
+	find . -path ./.git -prune -o \( -name __pycache__ -o -name .ipynb_checkpoints \) -type d -prune -exec rm -rf {} +

@@ -1,0 +1,131 @@
+"""Bad input: each error is a ModelError whose message names the condition and the equation."""
+
+import pytest
+import sympy as sp
+from sympy.physics.mechanics import dynamicsymbols
+
+import whittaker_teach as wt
+from whittaker_teach import ModelError
+
+T = dynamicsymbols._t
+m, J, k = sp.symbols("m J k", positive=True)
+x, th, y, z = dynamicsymbols("x theta y z")
+xd, yd, thd, zd = (c.diff(T) for c in (x, y, th, z))
+L = m / 2 * (xd**2 + yd**2) + J / 2 * thd**2 - k**2 * th**2 / 2
+
+
+def build(L=L, coords=(x, th, y), dep=None):
+    return wt.ChaplyginSystem(L, list(coords), dependent={yd: xd * sp.tan(th)} if dep is None
+                              else dep)
+
+
+def test_model_error_is_value_error():
+    assert issubclass(ModelError, ValueError)
+    assert issubclass(wt.ChartError, ModelError)
+
+
+@pytest.mark.parametrize("bad_L, fragment", [
+    (L + y**2, r"L depends on the dependent coordinate y \(Chaplygin condition, 1.3"),
+    (L + T * xd, r"depends explicitly on t.*1\.3"),
+    (L + z, r"depends on z\(t\), which is not among the coordinates"),
+    (L + x.diff(T, 2), r"acceleration"),
+])
+def test_lagrangian_errors(bad_L, fragment):
+    with pytest.raises(ModelError, match=fragment):
+        build(L=bad_L)
+
+
+@pytest.mark.parametrize("dep, fragment", [
+    ({yd: xd * sp.tan(th) + y}, r"depends on the dependent coordinate y \(Chaplygin condition, 1.3\)"),
+    ({yd: xd * sp.tan(th) * T}, r"depends explicitly on t"),
+    ({x.diff(T, 2): xd}, r"not the velocity of one of the coordinates"),
+    ({z.diff(T): xd}, r"not the velocity of one of the coordinates"),
+])
+def test_constraint_errors(dep, fragment):
+    with pytest.raises(ModelError, match=fragment):
+        build(dep=dep)
+
+
+def test_dependent_velocity_written_with_another():
+    with pytest.raises(ModelError, match=r"another dependent velocity.*1\.1"):
+        wt.ChaplyginSystem(L + m / 2 * zd**2, [x, th, y, z],
+                           dependent={yd: xd * sp.tan(th), zd: yd})
+
+
+def test_not_homogeneous():
+    s = build(dep={yd: xd**2})
+    for call in (s.energy, lambda: s.reduce(x)):
+        with pytest.raises(ModelError, match=r"not homogeneous of degree one.*\(1\.10\).*\(1\.11\)"):
+            call()
+
+
+def test_duplicate_coordinates():
+    with pytest.raises(ModelError, match="duplicate coordinates: x"):
+        build(coords=(x, th, y, x))
+
+
+def test_empty_and_wrong_coordinates():
+    with pytest.raises(ModelError, match="empty"):
+        wt.ChaplyginSystem(L, [])
+    with pytest.raises(ModelError, match="not a function of time"):
+        wt.ChaplyginSystem(L, [sp.Symbol("x"), th, y])
+    with pytest.raises(wt.ModelTypeError, match="list of dynamicsymbols"):
+        wt.ChaplyginSystem(L, x)
+
+
+def test_wrong_types():
+    with pytest.raises(wt.ModelTypeError, match="Lagrangian L must be a SymPy expression"):
+        wt.ChaplyginSystem("m/2*xdot**2", [x, th, y])
+    with pytest.raises(wt.ModelTypeError, match="not an equation"):
+        wt.ChaplyginSystem(sp.Eq(L, 0), [x, th, y])
+    with pytest.raises(wt.ModelTypeError, match="dependent must be a dict"):
+        wt.ChaplyginSystem(L, [x, th, y], dependent=[(yd, xd)])
+    with pytest.raises(wt.ModelTypeError):
+        wt.ChaplyginSystem(None, [x, th, y])
+
+
+def test_eps_errors():
+    s = build()
+    with pytest.raises(ModelError, match=r"y is a dependent coordinate.*\(1\.5\)"):
+        s.reduce(y)
+    with pytest.raises(ModelError, match=r"'q' is not a coordinate"):
+        s.reduce("q")
+    with pytest.raises(ModelError, match="is not a coordinate"):
+        s.reduce(sp.Symbol("x"))
+    with pytest.raises(wt.ModelTypeError):
+        s.reduce(3)
+    with pytest.raises(ModelError, match=r"direction must be \+1 or -1"):
+        s.reduce(x, direction=2)
+    with pytest.raises(ModelError, match="direction"):
+        s.reduce(x, direction=True)
+
+
+def test_singular_kinetic_energy():
+    s = wt.ChaplyginSystem(m / 2 * (xd + thd)**2, [x, th])
+    with pytest.raises(ModelError, match=r"singular kinetic energy.*\(1\.4\)"):
+        s.accelerations()
+
+
+def test_energy_not_solvable():
+    s = wt.ChaplyginSystem(m * xd**4 + J * thd**2 - k * th**2, [x, th])
+    with pytest.raises(ModelError, match=r"\(1\.13\) cannot be solved for qdot_eps"):
+        s.reduce(x)
+    s = wt.ChaplyginSystem(J * thd**2 - k * th**2 + x * xd, [x, th])   # no xdot**2 term
+    with pytest.raises(ModelError, match=r"singular kinetic energy"):
+        s.reduce(x)
+
+
+def test_one_degree_of_freedom_cannot_be_reduced():
+    s = wt.ChaplyginSystem(m / 2 * xd**2 - k * x**2, [x])
+    with pytest.raises(ModelError, match="at least two independent coordinates"):
+        s.reduce(x)
+
+
+def test_parameter_clash():
+    with pytest.raises(ModelError, match="has the name of a coordinate"):
+        wt.ChaplyginSystem(L + sp.Symbol("x") * xd, [x, th, y], dependent={yd: xd * sp.tan(th)})
+
+
+def test_unknown_example():
+    with pytest.raises(ModelError, match="no built-in example 'sled'"):
+        wt.examples.get("sled")

@@ -1,0 +1,78 @@
+"""The command line: ``python -m whittaker_teach derive sledge``.
+
+Commands::
+
+    list                          the built-in examples
+    derive NAME [--latex] [--coordinate Q] [--direction {1,-1}]
+                                  every step of the paper for a built-in system,
+                                  each with its paper number and its check
+    bench derivation [--repeat N] fresh-process time of the whole derivation with
+                                  verification, against sympy.physics.mechanics
+"""
+
+import argparse
+import sys
+
+
+def _list(args):
+    from .examples import catalogue
+    for e in catalogue():
+        print(f"{e.name:18s} {e.description}  (q_eps = {e.coordinate})")
+    return 0
+
+
+def _derive(args):
+    from .errors import ModelError
+    from .examples import get
+    try:
+        ex = get(args.name)
+        red = ex.build().reduce(args.coordinate or ex.coordinate, args.direction)
+    except ModelError as err:
+        print(f"error: {err}", file=sys.stderr)
+        return 2
+    red.show(latex=args.latex)
+    checks = [s.check for s in red.steps if s.check]
+    if ex.name == "sledge":
+        from .examples import section3
+        sec3 = section3(args.direction, reduction=red)
+        print()
+        sec3.show(latex=args.latex)
+        checks += [s.check for s in sec3 if s.check]
+    from .steps import Report
+    report = Report(checks)
+    print()
+    print(str(report).splitlines()[-1])
+    return 0 if report.ok else 1
+
+
+def _bench(args):
+    from .bench import main
+    return main(args)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="python -m whittaker_teach",
+                                     description="Mei (1983): the generalized Whittaker "
+                                     "equations, derived and checked step by step.")
+    sub = parser.add_subparsers(dest="command", required=True)
+    sub.add_parser("list", help="list the built-in examples").set_defaults(func=_list)
+    d = sub.add_parser("derive", help="print every step of the paper for a built-in system")
+    d.add_argument("name", help="a built-in example (see 'list')")
+    d.add_argument("--latex", action="store_true", help="print LaTeX instead of Unicode")
+    d.add_argument("--coordinate", help="the coordinate q_eps that replaces time")
+    d.add_argument("--direction", type=int, choices=(1, -1), default=1,
+                   help="the sign of qdot_eps (default +1)")
+    d.set_defaults(func=_derive)
+    b = sub.add_parser("bench", help="benchmarks that print figures")
+    b.add_argument("what", choices=("derivation",))
+    b.add_argument("--repeat", type=int, default=3, help="fresh processes per measurement")
+    b.set_defaults(func=_bench)
+    args = parser.parse_args(argv)
+    return args.func(args)
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main())
+    except BrokenPipeError:  # output piped into head, say
+        sys.exit(0)

@@ -1,0 +1,135 @@
+"""The steps (3.1)-(3.15) of the sledge, each compared with the paper's printed form.
+
+Kept apart from ``sledge.py`` so that building the sledge does not load it.
+"""
+
+import random
+
+import mpmath
+import sympy as sp
+
+from ..rewrite import collected
+from ..steps import Step, eq, notation
+from ..verify import DPS, Check, check_identity, check_zero
+
+
+def _p(red, name):
+    return next(p for p in red.system.parameters if p.name == name)
+
+
+def _refuted(label, claim, expr, sample, points=6):
+    """A check that ``expr`` does NOT vanish: used to show a misprint is wrong."""
+    syms = sorted(expr.free_symbols, key=str)
+    fn = sp.lambdify(syms, expr, modules="mpmath")
+    rng, worst = random.Random(3), 0.0
+    with mpmath.workdps(DPS):
+        for _ in range(points):
+            pt = sample(rng)
+            worst = max(worst, float(abs(fn(*[mpmath.mpf(pt[s]) for s in syms]))))
+    return Check(label, claim, worst > 1e-6, "refutation", f"numerically at {points} random "
+                 f"admissible points, mpmath at {DPS} digits: the printed form leaves a residual "
+                 f"as large as {worst:.2g}", points, worst)
+
+
+def section3_steps(red):
+    S = red.system
+    m, J, k = (_p(red, n) for n in "mJk")
+    x, th, y = (S.q[c] for c in S.coordinates)
+    xd, thd, yd = (S.qd[c] for c in S.coordinates)
+    thp, thpp = red._qp[S.coordinates[1]], red._qpp[S.coordinates[1]]
+    v, h, s = red._v, red.h, red.direction
+    C, a, phi, t = sp.Symbol("C", positive=True), sp.Symbol("a"), sp.Symbol("phi"), sp.Symbol("t")
+    sec2 = 1 + sp.tan(th)**2
+    smp, smp_t = red._sample, S._sample_time
+
+    def smp_c(rng):
+        """A point with 2h - m C^2 - k^2 theta^2 > 0, for the first integral (3.11)."""
+        pt = red._sample(rng)
+        with mpmath.workdps(DPS):
+            pt[C] = mpmath.mpf(rng.uniform(0.3, 1.5))
+            pt[h] = (pt[m] * pt[C]**2 + pt[k]**2 * pt[th]**2) / 2 + rng.uniform(0.1, 1.0)
+            pt[a] = rng.uniform(0.1, 1.2)
+            pt[phi] = rng.uniform(-3, 3)
+            pt[t] = rng.uniform(-3, 3)
+        return pt
+
+    st = [Step("3.1", "the Lagrangian", [eq(sp.Symbol("L"), S._L)]),
+          Step("3.2", "the constraint: the runner does not slide sideways",
+               [eq(yd, S._phi[y])])]
+    printed = m / 2 * xd**2 * sec2 + J / 2 * thd**2 - k**2 * th**2 / 2
+    st.append(Step("3.3", "L~", [eq(sp.Symbol("Ltilde"), printed)], check_identity(
+        "3.3", "the printed L~ equals the derived one", printed, S._Ltilde, smp_t)))
+    printed = m / 2 * xd**2 * sec2 + J / 2 * thd**2 + k**2 * th**2 / 2
+    st.append(Step("3.4", "the energy integral (1.11)", [eq(printed, h)], check_identity(
+        "3.4", "the printed energy equals (1.11)", printed, S._energy(), smp_t)))
+    printed = (2 * h - k**2 * th**2) / (m * sec2 + J * thp**2)
+    st.append(Step("3.5", "(1.13) solved: x-dot squared, theta' = d theta/dx",
+                   [eq(v**2, printed)], check_identity(
+        "3.5", "xdot^2 from (1.12) equals the printed form with J theta'^2 (the OCR prints "
+        "J thetadot^2, which mixes t and x)", red._vstar**2, printed, smp)))
+    printed = v**2 / 2 * (m * sec2 + J * thp**2) - k**2 * th**2 / 2
+    st.append(Step("3.6", "Omega (1.6)", [eq(sp.Symbol("Omega"), printed)], check_identity(
+        "3.6", "the printed Omega equals (1.6)", printed, red._Omega, smp)))
+    printed = s * sp.sqrt(2 * h - k**2 * th**2) * sp.sqrt(m * sec2 + J * thp**2)
+    st.append(Step("3.7", f"L* (1.16); the sign is the direction of travel, here {s:+d}",
+                   [eq(notation("L*", "L^{*}"), printed)], check_identity(
+        "3.7", "the printed L* equals (1.16)", printed, red._Lstar, smp)))
+    st.append(Step("3.8", "y-dot* (1.23)", [eq(notation("ẏ*", r"\dot{y}^{*}"),
+                                                   red._qdstar[0])], check_identity(
+        "3.8", "d(xdot tan theta)/dxdot = tan theta", red._qdstar[0], sp.tan(th), smp)))
+    A = J * thp**2 + m * sec2
+    R = 2 * h - k**2 * th**2
+    printed = (red._D(s * sp.sqrt(R) * J * thp / sp.sqrt(A))
+               + s * k**2 * th * sp.sqrt(A) / sp.sqrt(R))
+    shown = (sp.Derivative(s * sp.sqrt(R) * J * thp / sp.sqrt(A), x, evaluate=False)
+             + s * k**2 * th * sp.sqrt(A) / sp.sqrt(R))
+    st.append(Step("3.9", "(1.26) for the sledge, after the m tan(theta)(1 + tan^2 theta) "
+                   "terms cancel", [eq(shown, 0)], check_identity(
+        "3.9", "the expanded form equals (1.26) (the OCR's last term lacks the root of "
+        "2h - k^2 theta^2 and the factor 1 + tan^2 theta)", printed, red._eqs[0], smp)))
+    qpp = red._accelerations()[thpp]
+    cleared = collected(J * R * (thpp - qpp), [thpp, thp])
+    printed = J * R * thpp + J * (-R * sp.tan(th) + k**2 * th) * thp**2 + m * k**2 * th * sec2
+    st.append(Step("3.10", "(1.26) cleared of denominators: J (2h - k^2 theta^2) (theta'' - "
+                   "theta''(1.26))", [eq(cleared, 0)], check_identity(
+        "3.10", "the cleared equation equals the printed (3.10) with m k^2 theta (1 + tan^2 theta)",
+        cleared, printed, smp)))
+    ocr = printed - m * k**2 * th * sec2 + m * k * th * sec2
+    st.append(Step("3.10", "erratum: the OCR's coefficient m k theta", [eq(ocr, 0)],
+                   _refuted("3.10 OCR", "the OCR form with m k theta (1 + tan^2 theta) is not "
+                            "satisfied by the solutions of (1.26)", ocr.xreplace({thpp: qpp}),
+                            smp)))
+    F = sp.sqrt((-k**2 * th**2 + 2 * h - m * C**2) / J) / (C * sp.cos(th))
+    along = {thp: F, thpp: F.diff(th) * F}
+    st.append(Step("3.11", "a first integral of (3.10), C a constant",
+                   [eq(thp, F)], check_zero(
+        "3.11", "theta' = F(theta), theta'' = F'(theta) F satisfy (3.10) for every C",
+        printed.xreplace(along), smp_c)))
+    integral = R / (m + J * thp**2 * sp.cos(th)**2)
+    st.append(Step("3.11", "equivalently C^2 = (2h - k^2 theta^2)/(m + J theta'^2 cos^2 theta) "
+                   "is constant along (1.26)", [eq(C**2, integral)], check_zero(
+        "3.11", "d/dx of the integral vanishes on the solutions of (1.26)",
+        red._D(integral).xreplace({thpp: qpp}), smp)))
+    xdot_c = red._vstar.xreplace({thp: F})
+    st.append(Step("3.12", "(3.11) in (3.5)", [eq(xd, C * sp.cos(th))], check_identity(
+        "3.12", "xdot from (1.12) on the first integral equals C cos theta",
+        xdot_c, s * C * sp.cos(th), smp_c)))
+    st.append(Step("3.13", "by (3.2)", [eq(yd, C * sp.sin(th))], check_identity(
+        "3.13", "xdot tan theta = C sin theta", (s * C * sp.cos(th)) * sp.tan(th),
+        s * C * sp.sin(th), smp_c)))
+    thdot = F * s * C * sp.cos(th)
+    st.append(Step("3.14", "theta-dot = theta' x-dot (the OCR prints theta for theta-dot), "
+                   "and its derivative", [eq(thd, thdot), eq(S.qdd[S.coordinates[1]],
+                                                                   -k**2 / J * th)],
+                   check_identity(
+        "3.14", "d(thetadot)/dtheta * thetadot = -k^2 theta / J, as (1.4) gives in time",
+        [thdot.diff(th) * thdot, S._accelerations()[S.qdd[S.coordinates[1]]]],
+        [-k**2 * th / J, -k**2 * th / J], smp_c)))
+    sol = a * sp.cos(k / sp.sqrt(J) * t + phi)
+    st.append(Step("3.15", "the motion in time; h = m C^2/2 + k^2 a^2/2",
+                   [eq(th, sol), eq(h, m * C**2 / 2 + k**2 * a**2 / 2)], check_zero(
+        "3.15", "theta(t) solves (3.14), and thetadot = 0 at theta = a when h = m C^2/2 + "
+        "k^2 a^2/2", [sol.diff(t, 2) + k**2 / J * sol,
+                      (-k**2 * th**2 + 2 * h - m * C**2).xreplace(
+                          {th: a, h: m * C**2 / 2 + k**2 * a**2 / 2})], smp_c)))
+    return st

@@ -1,0 +1,467 @@
+"""The Whittaker reduction (1.5)-(1.27): removing time with the energy integral.
+
+One independent coordinate q_eps takes the place of time; the others, q_nu,
+become functions of it, with q'_nu = dq_nu/dq_eps (1.5).  The energy
+integral (1.11), written in the new variables (1.13), gives qdot_eps (1.12);
+the reduced Lagrangian L* (1.16) and the reduced constraints qdot* (1.23)
+then give the generalized Whittaker equations (1.26).
+
+>>> import whittaker_teach as wt
+>>> red = wt.examples.sledge().reduce("x", direction=+1)
+>>> red.independent, red.coordinates
+(x, [theta(x)])
+>>> red.L_star
+sqrt(2*h - k**2*theta(x)**2)*sqrt(J*Derivative(theta(x), x)**2 + m*tan(theta(x))**2 + m)
+>>> red.verify().ok
+True
+
+The direction matters.  The energy fixes only |qdot_eps|; the branch of the
+square root in (1.12) is chosen by ``direction`` (the sign of qdot_eps), not
+by whatever a solver returns first.  With terms linear in the velocities, or
+with a constraint that is only positively homogeneous (phi(-v) != -phi(v)),
+the reduced equations for the two directions differ.
+
+How the branch is chosen: with qdot_eps a symbol of known sign s, every
+square root of (qdot_eps^2 * X) is rewritten as s*qdot_eps*sqrt(X) (a
+targeted ``factor_terms`` on the radicands, no ``simplify``), so Omega (1.6)
+is a polynomial A2 qdot_eps^2 + A1 qdot_eps + A0 and (1.13) reads
+A2 qdot_eps^2 - A0 = h, whence qdot_eps = s sqrt((h + A0)/A2).  A Lagrangian
+whose Omega is not of that form (not quadratic in the velocities) is refused
+with a ModelError naming (1.13).
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from .errors import ModelError, ModelTypeError
+from .rewrite import collected, rational
+from .steps import Derivation, Report, Step, eq, notation, partial
+from .system import T, _name
+from .verify import DPS, check_identity, check_zero
+
+__all__ = ["Reduction"]
+
+
+def _check_direction(direction):
+    if isinstance(direction, bool) or direction not in (1, -1):
+        raise ModelError(f"direction must be +1 or -1 (the sign of qdot_eps, which the energy "
+                         f"integral 1.13 does not fix), got {direction!r}")
+    return int(direction)
+
+
+def _pull_speed(expr, v):
+    """Rewrite sqrt(v**2 * X) as |v| sqrt(X) (|v| = s v, v has a known sign)."""
+    def fix(p):
+        return sp.Pow(sp.factor_terms(p.base), p.exp)
+    return expr.replace(lambda e: e.is_Pow and not e.exp.is_Integer and e.base.has(v), fix)
+
+
+class Reduction:
+    """The generalized Whittaker equations of a system, with q_eps = ``coordinate``.
+
+    Made by :meth:`ChaplyginSystem.reduce`.  Results are properties
+    (``L_star``, ``equations``, ``nielsen_equations``, ...), in the reduced
+    notation: ``independent`` is the Symbol q_eps and ``coordinates`` are the
+    q_nu as functions of it.  ``steps`` is every step of the paper for this
+    system, each with its verification; ``verify()`` re-runs the checks.
+    """
+
+    def __init__(self, system, coordinate, direction=+1):
+        self.system = S = system
+        self.direction = _check_direction(direction)
+        self._eps = self._check_eps(coordinate)
+        self._nus = [c for c in S.independent_coordinates if c != self._eps]
+        if not self._nus:
+            raise ModelError("the reduction needs at least two independent coordinates "
+                             "(eps >= 2, 1.5): with one, the energy integral (1.11) already "
+                             "gives t(q_eps) by a quadrature")
+        S.check_homogeneity()
+        S._accelerations()          # (1.4) must be solvable: a regular kinetic energy
+        self._make_symbols()
+        self._cache = {}
+        self._derive()
+
+    # ----- notation -------------------------------------------------------
+    def _check_eps(self, coordinate):
+        S = self.system
+        if isinstance(coordinate, str):
+            match = [c for c in S.coordinates if _name(c) == coordinate]
+            if not match:
+                raise ModelError(f"{coordinate!r} is not a coordinate of the system "
+                                 f"{[_name(c) for c in S.coordinates]} (1.5: q_eps must be one "
+                                 "of the independent coordinates)")
+            coordinate = match[0]
+        if not isinstance(coordinate, sp.Basic):
+            raise ModelTypeError(f"the coordinate q_eps must be a dynamicsymbol or its name, "
+                                 f"got {type(coordinate).__name__}")
+        if coordinate in S.dependent_coordinates:
+            raise ModelError(f"{_name(coordinate)} is a dependent coordinate: q_eps must be one "
+                             "of the independent coordinates q_sigma (1.5), since the "
+                             "constraints (1.3) are solved for the dependent velocities")
+        if coordinate not in S.independent_coordinates:
+            raise ModelError(f"{coordinate} is not a coordinate of the system "
+                             f"{S.coordinates} (1.5: q_eps must be one of the independent "
+                             "coordinates); pass the dynamicsymbol, e.g. x, or its name 'x'")
+        return coordinate
+
+    def _make_symbols(self):
+        S, eps = self.system, self._eps
+        self.independent = S.q[eps]
+        n = _name(eps)
+        sign = {"positive": True} if self.direction > 0 else {"negative": True}
+        self._v = sp.Symbol(n + "dot", **sign)
+        self._qp = {c: sp.Symbol(_name(c) + "prime") for c in self._nus}
+        self._qpp = {c: sp.Symbol(_name(c) + "primeprime") for c in self._nus}
+        taken = {p.name for p in S.parameters} | S._names
+        self.h = sp.Symbol("h" if "h" not in taken else "h_E")
+        x = self.independent
+        self.coordinates = [sp.Function(_name(c), **_assume(c))(x) for c in self._nus]
+        self._to_public = {}
+        for c, f in zip(self._nus, self.coordinates):
+            self._to_public[S.q[c]] = f
+            self._to_public[self._qp[c]] = f.diff(x)
+            self._to_public[self._qpp[c]] = f.diff(x, 2)
+        self._to_internal = {v: k for k, v in self._to_public.items()}
+
+    def to_public(self, expr):
+        """Rewrite internal symbols (theta, thetaprime) as functions of q_eps (theta(x), ...)."""
+        return sp.sympify(expr).xreplace(self._to_public)
+
+    # ----- the operations of the paper ------------------------------------
+    def _sub15(self, expr):
+        """Substitute (1.5): qdot_nu = qdot_eps q'_nu, with the branch of |qdot_eps| fixed."""
+        S, v = self.system, self._v
+        sub = {S.qd[self._eps]: v}
+        sub.update({S.qd[c]: v * self._qp[c] for c in self._nus})
+        return _pull_speed(expr.xreplace(sub), v)
+
+    def _star(self, expr):
+        """Put qdot_eps = qdot_eps(q', q, h) from (1.12)."""
+        return expr.xreplace({self._v: self._vstar})
+
+    def _D(self, f):
+        """d/dq_eps of f(q', q) along a path (q'' taken as independent, as in 2.1)."""
+        S = self.system
+        out = f.diff(S.q[self._eps])
+        for c in self._nus:
+            out += f.diff(self._qp[c]) * self._qpp[c] + f.diff(S.q[c]) * self._qp[c]
+        return out
+
+    def _derive(self):
+        S, v, h = self.system, self._v, self.h
+        self._Omega = self._sub15(S._Ltilde)                                    # (1.6)
+        Om = sp.expand(self._Omega)
+        A2, A1, A0 = (Om.coeff(v, k) for k in (2, 1, 0))
+        if any(a.has(v) for a in (A2, A1, A0)) or sp.expand(Om - A2*v**2 - A1*v - A0) != 0:
+            raise ModelError("the energy equation (1.13) cannot be solved for qdot_eps in closed "
+                             "form: Omega (1.6) is not quadratic in qdot_eps (is L quadratic in "
+                             "the velocities?)")
+        if A2 == 0:
+            raise ModelError("the energy equation (1.13) cannot be solved for qdot_eps: Omega "
+                             "(1.6) has no term in qdot_eps**2 (the kinetic energy vanishes "
+                             "along q_eps)")
+        s = self.direction
+        self._A = (A2, A1, A0)
+        twoA2, twoK = sp.expand(2 * A2), sp.expand(2 * (h + A0))
+        self._vstar = s * sp.sqrt(twoK) / sp.sqrt(twoA2)                          # (1.12)
+        self._Lstar = s * sp.sqrt(twoK) * sp.sqrt(twoA2) + A1                     # (1.16)
+        self._Pstar = [self._star(self._sub15(P)) for P in S._dLdqdep_tilde()]
+        self._omega = [self._sub15(phi) for phi in S._phi.values()]               # (1.22)
+        self._qdstar = [w.diff(v) for w in self._omega]                           # (1.23)
+        self._qdstar = [self._star(q) if q.has(v) else q for q in self._qdstar]
+        self._eqs = [self._whittaker(c) for c in self._nus]                       # (1.26)
+
+    def _whittaker(self, c):
+        """The nu-th generalized Whittaker equation (1.26), for nu = c."""
+        S, Ls = self.system, self._Lstar
+        qp, q = self._qp[c], S.q[c]
+        e = self._D(Ls.diff(qp)) - Ls.diff(q)
+        for P, qs in zip(self._Pstar, self._qdstar):
+            e -= P * (self._D(qs.diff(qp)) - qs.diff(q))
+        return e
+
+    def _accelerations(self):
+        if "acc" not in self._cache:
+            qpp = [self._qpp[c] for c in self._nus]
+            eqs = sp.Matrix(self._eqs)
+            M = eqs.jacobian(qpp)
+            rest = eqs.xreplace({a: 0 for a in qpp})
+            self.system._require_regular(M, "d(1.26)/d(q''_nu)", self._sample)
+            if M.is_diagonal():
+                sol = [-rest[i] / M[i, i] for i in range(len(qpp))]
+            else:
+                sol = list(M.LUsolve(-rest))
+            qp = list(self._qp.values())
+            self._cache["acc"] = {a: rational(x, qp) for a, x in zip(qpp, sol)}
+        return self._cache["acc"]
+
+    # ----- public results -------------------------------------------------
+    @property
+    def Omega(self):
+        """Omega (1.6): L~ with qdot_nu = qdot_eps q'_nu."""
+        return self.to_public(self._Omega)
+
+    @property
+    def velocity(self):
+        """qdot_eps(q', q, h), the root of (1.13) with the sign ``direction`` (1.12)."""
+        return self.to_public(self._vstar)
+
+    @property
+    def L_star(self):
+        """The reduced Lagrangian L* = dOmega/dqdot_eps at (1.12) (1.16)."""
+        return self.to_public(self._Lstar)
+
+    @property
+    def constraint_rates(self):
+        """qdot*_(eps+beta) = d omega/d qdot_eps (1.23): {dependent coordinate: expression}."""
+        return {self._dep_fn(c): self.to_public(q)
+                for c, q in zip(self.system.dependent_coordinates, self._qdstar)}
+
+    def _dep_fn(self, c):
+        return sp.Function(_name(c), **_assume(c))(self.independent)
+
+    @property
+    def equations(self):
+        """The generalized Whittaker equations (1.26), expressions (= 0), one per q_nu."""
+        return [self.to_public(e) for e in self._eqs]
+
+    @property
+    def nielsen_equations(self):
+        """The same equations in Nielsen form (2.4)."""
+        from .nielsen import nielsen
+        return [self.to_public(e) for e in nielsen(self)["2.4"]]
+
+    def accelerations(self):
+        """q''_nu solved from (1.26): {theta(x).diff(x, 2): expression}."""
+        return {self.to_public(k): self.to_public(v) for k, v in self._accelerations().items()}
+
+    @property
+    def time_rate(self):
+        """dt/dq_eps = 1/qdot_eps, with qdot_eps from (1.12): t(q_eps) by quadrature."""
+        return self.to_public(1 / self._vstar)
+
+    @property
+    def dependent_rates(self):
+        """dq_(eps+beta)/dq_eps = qdot*_(eps+beta) (1.23)-(1.24): {y(x): expression}."""
+        return self.constraint_rates
+
+    # ----- random admissible points --------------------------------------
+    def _energy_fn(self):
+        if "Efn" not in self._cache:
+            E = self.system._energy()
+            syms = sorted(E.free_symbols, key=str)
+            self._cache["Efn"] = (syms, sp.lambdify(syms, E, modules="mpmath"))
+        return self._cache["Efn"]
+
+    def _sample(self, rng):
+        """A random point on the energy surface: h is the energy of the sampled motion."""
+        import mpmath
+        S = self.system
+        pt = S._sample_time(rng)
+        v = self.direction * rng.uniform(0.3, 1.5)
+        pt[self._v] = v
+        pt[S.qd[self._eps]] = v
+        syms, fn = self._energy_fn()
+        with mpmath.workdps(DPS):
+            for c in self._nus:
+                pt[self._qp[c]] = rng.uniform(-1, 1)
+                pt[self._qpp[c]] = rng.uniform(-1, 1)
+                pt[S.qd[c]] = mpmath.mpf(v) * mpmath.mpf(pt[self._qp[c]])
+            pt[self.h] = fn(*[mpmath.mpf(pt[s]) for s in syms])
+        return pt
+
+    # ----- steps ----------------------------------------------------------
+    def _steps(self):
+        from .nielsen import nielsen_steps
+        steps = list(self.system.steps) + self._reduction_steps() + nielsen_steps(self)
+        return steps
+
+    def _reduction_steps(self):
+        S, v, h, smp = self.system, self._v, self.h, self._sample
+        eps, nus, sig = self._eps, self._nus, S.independent_coordinates
+        Lt, Om = S._Ltilde, self._Omega
+        Omv, vs, Ls = Om.diff(v), self._vstar, self._Lstar
+        qp = self._qp
+        qs = {c: S.q[c] for c in S.coordinates}
+        ne = _name(eps)
+        def d(f, z):
+            return partial(*{"Omega": ("Ω", r"\Omega"), "L^*": ("L*", "L^{*}")}[f], z)
+        st = []
+        st.append(Step("1.5", f"change of variable: {ne} replaces t, q' = dq/d{ne}",
+                       [eq(S.qd[c], v * qp[c]) for c in nus]))
+        st.append(Step("1.6", "Omega: L~ with (1.5) substituted",
+                       [eq(sp.Symbol("Omega"), collected(Om, [v]))]))
+        tidy = lambda e: collected(e, [v] + list(qp.values()))  # noqa: E731
+        st.append(Step("1.7", "dOmega/dqdot_eps", [eq(d("Omega", v), tidy(Omv))], check_identity(
+            "1.7", "dOmega/dqdot_eps = sum_sigma dL~/dqdot_sigma qdot_sigma/qdot_eps", Omv,
+            self._sub15(sum((Lt.diff(S.qd[c]) * S.qd[c] for c in sig), sp.S.Zero)) / v, smp)))
+        st.append(Step("1.8", "dOmega/dq'_nu", [eq(d("Omega", qp[c]), tidy(Om.diff(qp[c])))
+                                               for c in nus], check_identity(
+            "1.8", "dOmega/dq'_nu = qdot_eps dL~/dqdot_nu", [Om.diff(qp[c]) for c in nus],
+            [v * self._sub15(Lt.diff(S.qd[c])) for c in nus], smp)))
+        st.append(Step("1.9", "dOmega/dq_sigma", [eq(d("Omega", qs[c]), tidy(Om.diff(qs[c])))
+                                                  for c in sig], check_identity(
+            "1.9", "dOmega/dq_sigma = dL~/dq_sigma", [Om.diff(qs[c]) for c in sig],
+            [self._sub15(Lt.diff(qs[c])) for c in sig], smp)))
+        E13 = v * Omv - Om
+        st.append(Step("1.13", "the energy integral in the new variables",
+                       [eq(collected(E13, [v]), h)], check_identity(
+            "1.13", "qdot_eps dOmega/dqdot_eps - Omega = (1.11) under (1.5)", E13,
+            self._sub15(S._energy()), smp)))
+        st.append(Step("1.12", f"(1.13) solved for qdot_eps, the branch with sign(qdot_eps) = "
+                       f"{self.direction:+d}", [eq(S.qd[eps], vs)], check_identity(
+            "1.12", "the chosen root solves (1.13) and has the sign of the motion",
+            [vs, self._star(E13)], [v, h], smp)))
+        Ovv = Omv.diff(v)
+        for lab, vars_, what in (("1.14", [qp[c] for c in nus], "q'_nu"),
+                                 ("1.15", [qs[c] for c in sig], "q_sigma")):
+            st.append(Step(lab, f"(1.13) differentiated with respect to {what}", [],
+                           check_zero(lab, f"qdot_eps Omega_vv dqdot_eps/d{what} + qdot_eps "
+                                      f"Omega_v,{what} - dOmega/d{what} = 0 at (1.12)",
+                                      [self._star(v * Ovv * vs.diff(z) + v * Omv.diff(z)
+                                                  - Om.diff(z)) for z in vars_], smp)))
+        st.append(Step("1.16", "the reduced Lagrangian L* = dOmega/dqdot_eps at (1.12)",
+                       [eq(LSTAR, Ls)], check_identity(
+            "1.16", "L* equals dOmega/dqdot_eps with qdot_eps from (1.12)", Ls,
+            self._star(Omv), smp)))
+        for lab, vars_, what in (("1.17", [qp[c] for c in nus], "q'_nu"),
+                                 ("1.18", [qs[c] for c in sig], "q_sigma")):
+            st.append(Step(lab, f"dL*/d{what} by the chain rule", [], check_identity(
+                lab, f"dL*/d{what} = Omega_vv dqdot_eps/d{what} + Omega_v,{what}",
+                [Ls.diff(z) for z in vars_],
+                [self._star(Ovv * vs.diff(z) + Omv.diff(z)) for z in vars_], smp)))
+        st.append(Step("1.19", "from (1.14) and (1.17)",
+                       [eq(d("L^*", qp[c]), Ls.diff(qp[c])) for c in nus], check_identity(
+            "1.19", "dL*/dq'_nu = (1/qdot_eps) dOmega/dq'_nu", [Ls.diff(qp[c]) for c in nus],
+            [self._star(Om.diff(qp[c]) / v) for c in nus], smp)))
+        st.append(Step("1.20", "from (1.15) and (1.18)",
+                       [eq(d("L^*", qs[c]), Ls.diff(qs[c])) for c in sig], check_identity(
+            "1.20", "dL*/dq_sigma = (1/qdot_eps) dOmega/dq_sigma (the OCR prints 1/qdot_sigma)",
+            [Ls.diff(qs[c]) for c in sig], [self._star(Om.diff(qs[c]) / v) for c in sig], smp)))
+        st.append(Step("1.21", "with (1.8) and (1.9)", [], check_identity(
+            "1.21", "dL*/dq'_nu = dL~/dqdot_nu and dL*/dq_sigma = (1/qdot_eps) dL~/dq_sigma",
+            [Ls.diff(qp[c]) for c in nus] + [Ls.diff(qs[c]) for c in sig],
+            [self._star(self._sub15(Lt.diff(S.qd[c]))) for c in nus]
+            + [self._star(self._sub15(Lt.diff(qs[c])) / v) for c in sig], smp)))
+        st += self._constraint_steps()
+        st += self._equation_steps()
+        return st
+
+    def _constraint_steps(self):
+        S, v, smp = self.system, self._v, self._sample
+        deps, nus, sig = S.dependent_coordinates, self._nus, S.independent_coordinates
+        if not deps:
+            return [Step("1.22", "no constraints (g = 0): omega, qdot* and the constraint term "
+                         "of (1.26) are absent", [])]
+        qp, qs = self._qp, {c: S.q[c] for c in S.coordinates}
+        star = [notation(sp.pretty(S.qd[c]) + "*", sp.latex(S.qd[c]) + "^{*}") for c in deps]
+        om = [sp.Symbol("omega_" + _name(c)) for c in deps]
+        st = [Step("1.22", "omega: the constraints with (1.5) substituted",
+                   [eq(o, w) for o, w in zip(om, self._omega)]),
+              Step("1.23", "qdot* = d omega/d qdot_eps",
+                   [eq(s_, q) for s_, q in zip(star, self._qdstar)], check_zero(
+                       "1.23", "qdot* is free of qdot_eps", [q.diff(v) for q in self._qdstar],
+                       smp)),
+              Step("1.24", "(1.10) in the new variables", [], check_zero(
+                  "1.24", "qdot_eps d omega/d qdot_eps - omega = 0",
+                  [v * w.diff(v) - w for w in self._omega], smp))]
+        phis = list(S._phi.values())
+        lhs = [q.diff(qp[c]) for q in self._qdstar for c in nus]
+        lhs += [q.diff(qs[c]) for q in self._qdstar for c in sig]
+        rhs = [self._sub15(p.diff(S.qd[c])) for p in phis for c in nus]
+        rhs += [self._sub15(p.diff(qs[c])) / v for p in phis for c in sig]
+        st.append(Step("1.25", "derivatives of qdot*", [], check_identity(
+            "1.25", "dqdot*/dq'_nu = dqdot_dep/dqdot_nu and dqdot*/dq_sigma = "
+            "(1/qdot_eps) dqdot_dep/dq_sigma", lhs, rhs, smp)))
+        Pname = [notation(f"(∂L/∂{sp.pretty(S.qd[c])})*",
+                          rf"\left(\frac{{\partial L}}{{\partial {sp.latex(S.qd[c])}}}\right)^{{*}}")
+                 for c in deps]
+        st.append(Step("1.26", "(dL/dqdot_dep)*: in q', q and h", [eq(a, b) for a, b in
+                                                                   zip(Pname, self._Pstar)]))
+        return st
+
+    def _equation_steps(self):
+        S, smp = self.system, self._sample
+        nus, eps = self._nus, self._eps
+        vs = self._vstar
+        vdot = vs * self._D(vs)
+        sub = {S.qd[eps]: vs, S.qdd[eps]: vdot}
+        for c in nus:
+            sub[S.qd[c]] = vs * self._qp[c]
+            sub[S.qdd[c]] = vdot * self._qp[c] + vs**2 * self._qpp[c]
+        eom = dict(zip(S.independent_coordinates, S._eom()))
+        shown = [collected(e, [*self._qpp.values(), *self._qp.values()]) for e in self._eqs]
+        st = [Step("1.26", "the generalized Whittaker equations, one per q_nu",
+                   [eq(e, 0) for e in shown], check_identity(
+                       "1.26", "qdot_eps x (1.26) = the nu-th equation of (1.4) on the energy "
+                       "surface (1.12)", [vs * e for e in self._eqs],
+                       [eom[c].xreplace(sub) for c in nus], smp))]
+        acc = self._accelerations()
+        st.append(Step("1.26", "q''_nu solved from (1.26)", [eq(k, v) for k, v in acc.items()]))
+        if S.is_holonomic:
+            st.append(self._step_127())
+        x = self.independent
+        rates = [eq(_dd("t", x), 1 / vs)]
+        rates += [eq(_dd(_name(c), x), q)
+                  for c, q in zip(S.dependent_coordinates, self._qdstar)]
+        chk = None
+        if S.dependent_coordinates:
+            chk = check_identity("from 1.24", "dq_dep/dq_eps = qdot_dep/qdot_eps = qdot*",
+                                 [self._sub15(p) / self._v for p in S._phi.values()],
+                                 self._qdstar, smp)
+        st.append(Step("from 1.12", "time and the dependent coordinates recovered by quadrature",
+                       rates, chk))
+        return st
+
+    def _step_127(self):
+        """(1.27): Whittaker's equations, by sympy's euler_equations on L* (another route)."""
+        from sympy.calculus.euler import euler_equations
+        x = self.independent
+        el = euler_equations(self.L_star, self.coordinates, x)
+        back = {}
+        for c, f in zip(self._nus, self.coordinates):
+            back[f.diff(x, 2)] = self._qpp[c]
+            back[f.diff(x)] = self._qp[c]
+            back[f] = self.system.q[c]
+        e27 = [-eq.lhs.xreplace(back) for eq in el]
+        chk = check_identity("1.27", "for g = 0, (1.26) is Whittaker's (1.27): the Euler-Lagrange "
+                             "equations of L* (sympy's euler_equations) agree", e27, self._eqs,
+                             self._sample)
+        return Step("1.27", "Whittaker's equations (g = 0)", [eq(e, 0) for e in e27], chk)
+
+    @property
+    def steps(self):
+        """Every step of the paper for this system: a :class:`Derivation` of :class:`Step`."""
+        if "steps" not in self._cache:
+            title = (f"{self.system.name}: Whittaker reduction with q_eps = {self.independent}, "
+                     f"sign(qdot_eps) = {self.direction:+d}")
+            self._cache["steps"] = Derivation(title, self._steps())
+        return self._cache["steps"]
+
+    def verify(self):
+        """Re-run every check of the derivation; a :class:`Report` of how each was shown."""
+        self._cache.pop("steps", None)
+        self.system._cache.pop("steps", None)
+        return Report(s.check for s in self.steps if s.check)
+
+    def show(self, latex=False):
+        """Every step, tagged with the paper's number (notebook: maths; terminal: Unicode)."""
+        return self.steps.show(latex=latex)
+
+    def __repr__(self):
+        return (f"<Reduction of {self.system.name!r}: q_eps = {self.independent}, "
+                f"direction {self.direction:+d}, {len(self._nus)} equation(s) (1.26)>")
+
+
+def _assume(c):
+    return {k: True for k in ("positive", "negative") if getattr(c, "is_" + k)}
+
+
+LSTAR = notation("L*", "L^{*}")
+
+
+def _dd(f, x):
+    """The notation d f / d x (a total derivative along the path), for display."""
+    fx = sp.pretty(sp.Symbol(f), use_unicode=True)
+    return notation(f"d{fx}/d{x}", rf"\frac{{d {sp.latex(sp.Symbol(f))}}}{{d {sp.latex(x)}}}")

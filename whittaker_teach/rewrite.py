@@ -1,0 +1,62 @@
+"""Targeted rewrites that make results readable, each exact and of known cost.
+
+No ``simplify``: each function here is one well-defined normal form.
+
+>>> import sympy as sp
+>>> a, b, t = sp.symbols("a b theta")
+>>> collected(a*b*sp.tan(t)**2 + a*b + a**2, [b])
+a**2 + a*b*(tan(theta)**2 + 1)
+"""
+
+import sympy as sp
+
+__all__ = ["collected", "rational", "pythagoras"]
+
+#: Above this operation count, a rewrite is skipped and the expression kept as built.
+OPS_LIMIT = 2000
+
+
+#: Coefficients larger than this are left expanded rather than factored.
+FACTOR_LIMIT = 200
+
+
+def collected(expr, symbols):
+    """``expand``, group the terms by their monomial in ``symbols`` (velocities,
+    accelerations) and ``factor`` each coefficient: the form a student would write.
+
+    Unlike ``sympy.collect`` it does not recurse into function arguments, so its
+    cost is one ``expand`` and one ``factor`` per monomial.
+    """
+    if sp.count_ops(expr) > OPS_LIMIT:
+        return expr
+    groups = {}
+    for term in sp.Add.make_args(sp.expand(expr)):
+        coeff, mono = term.as_independent(*symbols, as_Add=False)
+        groups.setdefault(mono, []).append(coeff)
+    out = []
+    for mono, coeffs in groups.items():
+        c = sp.Add(*coeffs)
+        if sp.count_ops(c) <= FACTOR_LIMIT:
+            c = sp.factor(c)
+        out.append(c * mono)
+    return pythagoras(sp.Add(*out))
+
+
+def pythagoras(expr):
+    """Replace every literal factor sin(u)**2 + cos(u)**2 by 1 (and nothing else).
+
+    >>> u = sp.Symbol("u")
+    >>> pythagoras((sp.sin(u)**2 + sp.cos(u)**2)*sp.cos(u))
+    cos(u)
+    """
+    args = {f.args[0] for f in expr.atoms(sp.sin, sp.cos)}
+    return expr.xreplace({sp.sin(u)**2 + sp.cos(u)**2: sp.S.One for u in args})
+
+
+def rational(expr, symbols=()):
+    """``cancel`` (one fraction, common factors removed; roots and functions such as
+    tan are treated as generators), then the numerator collected on ``symbols``."""
+    if sp.count_ops(expr) > OPS_LIMIT:
+        return expr
+    num, den = sp.fraction(sp.cancel(expr))
+    return collected(num, symbols) / pythagoras(sp.factor(den))

@@ -1,0 +1,166 @@
+"""Steps of a derivation: the paper's label, the equations, the check.
+
+A :class:`Step` is a record: the number of the equation in Mei (1983), a
+short title, the equations it shows (SymPy ``Eq`` objects, in the paper's
+notation: q' for dq/dq_eps, qdot for velocities) and, where the paper claims
+an identity, the :class:`~whittaker_teach.verify.Check` that verified it.
+A :class:`Derivation` is the ordered list of steps of one system.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import sympy as sp
+
+from .verify import Check
+
+__all__ = ["Step", "Derivation", "Report", "eq", "notation", "partial"]
+
+
+@dataclass(frozen=True)
+class Step:
+    """One numbered step of the paper, for the system at hand.
+
+    >>> import sympy as sp
+    >>> v, u, th = sp.symbols("v u theta")
+    >>> s = Step("3.2", "the constraint", [sp.Eq(v, u*sp.tan(th))])
+    >>> print(s.to_unicode())
+    (3.2) the constraint
+        v = u⋅tan(θ)
+    """
+
+    label: str
+    title: str
+    equations: list = field(default_factory=list)
+    check: Check | None = None
+    note: str = ""
+
+    @property
+    def status(self) -> str:
+        """``"verified"``, ``"FAILED"``, ``"not verified"`` or ``"derived"`` (no claim to check)."""
+        return self.check.status if self.check else "derived"
+
+    def to_unicode(self) -> str:
+        from .render import step_unicode
+        return step_unicode(self)
+
+    def to_latex(self) -> str:
+        from .render import step_latex
+        return step_latex(self)
+
+    def _repr_latex_(self):
+        return "$$" + self.to_latex() + "$$"
+
+    def __str__(self):
+        return self.to_unicode()
+
+
+class Report(list):
+    """The checks of a derivation, re-run: a list of :class:`Check`.
+
+    ``report.ok`` is True when every check held; ``str(report)`` says, for
+    each, how it was shown.
+    """
+
+    @property
+    def ok(self) -> bool:
+        return all(c.holds for c in self)
+
+    @property
+    def failed(self) -> list:
+        return [c for c in self if c.holds is not True]
+
+    def __str__(self):
+        lines = [c.describe() for c in self]
+        n_exact = sum(c.method == "exact" for c in self)
+        n_num = sum(c.method == "numeric" for c in self)
+        worst = max((c.max_residual for c in self if c.method == "numeric"), default=0.0)
+        lines.append(f"{len(self)} checks: {len(self) - len(self.failed)} held "
+                     f"({n_exact} exactly, {n_num} numerically, largest residual {worst:.1e}); "
+                     f"{len(self.failed)} did not")
+        return "\n".join(lines)
+
+    def _repr_markdown_(self):
+        return "\n".join(f"- {c.describe()}" for c in self) + (
+            "\n\n**All checks held.**" if self.ok else "\n\n**Some checks did not hold.**")
+
+
+class Derivation:
+    """An ordered list of steps with rendering and re-verification."""
+
+    def __init__(self, title, steps, checks=None):
+        self.title = title
+        self.steps = list(steps)
+        self._checks = checks  # callables re-running the checks, by label
+
+    def __iter__(self):
+        return iter(self.steps)
+
+    def __len__(self):
+        return len(self.steps)
+
+    def __getitem__(self, label):
+        """The step with a paper label, e.g. ``derivation["1.16"]``."""
+        for s in self.steps:
+            if s.label == label:
+                return s
+        raise KeyError(f"no step labelled ({label}) in {self.title}")
+
+    @property
+    def labels(self):
+        return [s.label for s in self.steps]
+
+    def show(self, latex=False):
+        from .render import show
+        return show(self, latex=latex)
+
+    def to_unicode(self):
+        from .render import derivation_unicode
+        return derivation_unicode(self)
+
+    def to_latex(self):
+        from .render import derivation_latex
+        return derivation_latex(self)
+
+    def __repr__(self):
+        return f"<Derivation {self.title!r}: {len(self.steps)} steps>"
+
+
+class Notation(sp.Symbol):
+    """A symbol that stands for a notation of the paper (dOmega/dq', L*, ...).
+
+    It prints as written: Unicode in a terminal, LaTeX in the book.
+
+    >>> n = notation("L*", "L^{*}")
+    >>> print(n, sp.latex(n))
+    L* L^{*}
+    """
+
+    def _latex(self, printer):
+        return _TEX.get(self.name, self.name)
+
+    def _pretty(self, printer):
+        from sympy.printing.pretty.stringpict import prettyForm
+        return prettyForm(self.name)
+
+
+_TEX = {}
+
+
+def notation(text, tex):
+    """A :class:`Notation` printed as ``text`` (Unicode) and ``tex`` (LaTeX)."""
+    _TEX[text] = tex
+    return Notation(text)
+
+
+def partial(f, f_tex, z):
+    """The notation d f / d z (a partial derivative) for the left side of a step."""
+    zt = sp.pretty(z, use_unicode=True)
+    return notation(f"∂{f}/∂{zt}", rf"\frac{{\partial {f_tex}}}{{\partial {sp.latex(z)}}}")
+
+
+def eq(lhs, rhs):
+    """An equation for display, ``Eq(lhs, rhs)`` left unevaluated (SymPy would otherwise
+    spend time deciding whether the two sides are equal; the checks do that)."""
+    return sp.Eq(lhs, rhs, evaluate=False)

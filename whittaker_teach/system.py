@@ -1,0 +1,418 @@
+"""The system model: a Chaplygin-type non-holonomic system, (1.1)-(1.4), (1.10)-(1.11).
+
+A :class:`ChaplyginSystem` is built from a Lagrangian, its coordinates (as
+``dynamicsymbols``) and the dependent velocities, ``{qdot_dep: phi}``, where
+each ``phi`` is a function of the independent coordinates and velocities
+only.  With no dependent velocities it is a holonomic system.
+
+Two steps, as in ``sympy.physics.mechanics.LagrangesMethod``: build the
+object (the model is checked once), then ask for what you need.
+
+>>> import sympy as sp
+>>> from sympy.physics.mechanics import dynamicsymbols
+>>> import whittaker_teach as wt
+>>> t = dynamicsymbols._t
+>>> m, J, k = sp.symbols("m J k", positive=True)
+>>> x, th, y = dynamicsymbols("x theta y")
+>>> L = m/2*(x.diff(t)**2 + y.diff(t)**2) + J/2*th.diff(t)**2 - k**2*th**2/2
+>>> sledge = wt.ChaplyginSystem(L, [x, th, y], dependent={y.diff(t): x.diff(t)*sp.tan(th)})
+>>> sledge.independent_coordinates, sledge.dependent_coordinates
+([x(t), theta(t)], [y(t)])
+>>> sledge.energy()
+J*Derivative(theta(t), t)**2/2 + k**2*theta(t)**2/2 + m*(tan(theta(t))**2 + 1)*Derivative(x(t), t)**2/2
+>>> sledge.accelerations()[th.diff(t, 2)]
+-k**2*theta(t)/J
+
+The Chaplygin equations (1.4) are derived with the constraints substituted
+(L~, "L-tilde"); the dependent coordinates never appear in them.  The model
+refuses, with a :class:`~whittaker_teach.errors.ModelError` that names the
+condition, a system outside the paper's assumptions: a Lagrangian or a
+constraint depending on a dependent coordinate or on t (Chaplygin conditions,
+1.3), a constraint that is not homogeneous of degree one (1.10; then there is
+no energy integral 1.11), a singular kinetic energy.
+
+Warning: numerical checks sample coordinates in (0.1, 1.2), velocities of
+modulus in (0.2, 1.5) and parameters without a sign assumption in (0.5, 2);
+an identity that fails only outside that box is not seen by them.
+"""
+
+from __future__ import annotations
+
+import random
+
+import mpmath
+import sympy as sp
+from sympy.core.function import AppliedUndef
+from sympy.physics.mechanics import dynamicsymbols
+
+from .errors import ModelError, ModelTypeError
+from .rewrite import collected, rational
+from .steps import Derivation, Report, Step, eq
+from .verify import DPS, check_identity, check_zero
+
+__all__ = ["ChaplyginSystem"]
+
+T = dynamicsymbols._t
+
+
+def _name(c):
+    return c.func.__name__
+
+
+def _sign_assumptions(c):
+    return {k: True for k in ("positive", "negative") if getattr(c, "is_" + k)}
+
+
+def _require_expr(value, what):
+    if isinstance(value, bool) or not isinstance(value, (sp.Basic, int, float)):
+        raise ModelTypeError(
+            f"{what} must be a SymPy expression, got {type(value).__name__} {value!r:.60}")
+    value = sp.sympify(value)
+    if not isinstance(value, sp.Expr):
+        raise ModelTypeError(f"{what} must be a SymPy expression (not an equation or a "
+                             f"relation), got {type(value).__name__}: {value}")
+    return value
+
+
+def _check_coordinates(coordinates):
+    if isinstance(coordinates, (sp.Basic, str)) or not hasattr(coordinates, "__iter__"):
+        raise ModelTypeError("coordinates must be a list of dynamicsymbols such as "
+                             f"[x, theta, y], got {type(coordinates).__name__}")
+    coords = list(coordinates)
+    if not coords:
+        raise ModelError("coordinates is empty: a system needs at least one coordinate q_s (1.1)")
+    for c in coords:
+        if not (isinstance(c, AppliedUndef) and c.args == (T,)):
+            raise ModelTypeError(
+                f"coordinate {c!r} is not a function of time: make coordinates with "
+                "sympy.physics.mechanics.dynamicsymbols, e.g. x, y = dynamicsymbols('x y')")
+    names = [_name(c) for c in coords]
+    dup = sorted({n for n in names if names.count(n) > 1})
+    if dup:
+        raise ModelError(f"duplicate coordinates: {', '.join(dup)} appear more than once "
+                         "in the list of coordinates q_s (1.1)")
+    return coords
+
+
+class ChaplyginSystem:
+    """A Chaplygin-type system: L(q, qdot) and qdot_dep = phi(q_sigma, qdot_sigma).
+
+    Parameters
+    ==========
+    lagrangian : Expr
+        L in the coordinates (``dynamicsymbols``) and their time derivatives.
+    coordinates : list
+        All coordinates q_s, independent and dependent, in the order to use.
+    dependent : dict, optional
+        ``{q_dep.diff(t): phi}``: the dependent velocities (1.1), (1.3).
+        Linear constraints and positively homogeneous ones of degree one
+        (``a*sqrt(xdot**2 + ydot**2)``) both work.  None or {}: holonomic.
+    name : str, optional
+        A name for printing.
+    """
+
+    def __init__(self, lagrangian, coordinates, dependent=None, *, name=None):
+        self.name = name or "system"
+        self.coordinates = _check_coordinates(coordinates)
+        self._make_symbols()
+        dependent = {} if dependent is None else dependent
+        if not isinstance(dependent, dict):
+            raise ModelTypeError("dependent must be a dict {q.diff(t): phi(q, qdot)} of the "
+                                 f"dependent velocities (1.1), got {type(dependent).__name__}")
+        dep_coords = [self._velocity_owner(key) for key in dependent]
+        self.dependent_coordinates = [c for c in self.coordinates if c in dep_coords]
+        self.independent_coordinates = [c for c in self.coordinates if c not in dep_coords]
+        if not self.independent_coordinates:
+            raise ModelError("every velocity is dependent: at least one independent "
+                             "coordinate q_sigma is needed (1.1: eps = n - g >= 1)")
+        L = _require_expr(lagrangian, "the Lagrangian L")
+        self.lagrangian = L
+        self.constraints = {k.expr.diff(T): _require_expr(v, f"the constraint for {k}")
+                            for k, v in dependent.items()}
+        self._L = self._internal(L, "the Lagrangian L")
+        self._phi = {self.q[c]: self._internal(self.constraints[c.diff(T)],
+                                               f"the constraint {_name(c)}dot = phi")
+                     for c in self.dependent_coordinates}
+        self._check_chaplygin()
+        self.parameters = sorted(
+            set().union(self._L.free_symbols, *(p.free_symbols for p in self._phi.values()))
+            - set(self._all_symbols), key=str)
+        clash = [p for p in self.parameters if p.name in self._names]
+        if clash:
+            raise ModelError(f"parameter {clash[0]} has the name of a coordinate or velocity; "
+                             "rename it (the derivation uses plain symbols for q and qdot)")
+        self._cache = {}
+
+    # ----- notation -------------------------------------------------------
+    def _make_symbols(self):
+        self.q, self.qd, self.qdd = {}, {}, {}
+        for c in self.coordinates:
+            n = _name(c)
+            self.q[c] = sp.Symbol(n, **_sign_assumptions(c))
+            self.qd[c] = sp.Symbol(n + "dot")
+            self.qdd[c] = sp.Symbol(n + "ddot")
+        self._all_symbols = [*self.q.values(), *self.qd.values(), *self.qdd.values()]
+        self._names = {s.name for s in self._all_symbols}
+        self._to_internal = {}
+        for c in self.coordinates:
+            self._to_internal[c.diff(T, 2)] = self.qdd[c]
+            self._to_internal[c.diff(T)] = self.qd[c]
+            self._to_internal[c] = self.q[c]
+        self._to_public = {v: k for k, v in self._to_internal.items()}
+
+    def _velocity_owner(self, key):
+        if not (isinstance(key, sp.Derivative) and key.variables == (T,)
+                and key.expr in self.coordinates):
+            raise ModelError(f"dependent: key {key!r} is not the velocity of one of the "
+                             f"coordinates {self.coordinates}; write it as y.diff(t) (1.1)")
+        return key.expr
+
+    def _internal(self, expr, what):
+        clash = sorted(str(s) for s in expr.free_symbols if s.name in self._names)
+        if clash:
+            raise ModelError(f"{what} contains the symbol {clash[0]}, which has the name of a "
+                             "coordinate or velocity; rename it (the derivation uses plain "
+                             "symbols for q and qdot)")
+        e = expr.xreplace(self._to_internal)
+        for d in e.atoms(sp.Derivative):
+            raise ModelError(f"{what} contains {d.xreplace(self._to_public)}, which is not "
+                             "a velocity or acceleration of a listed coordinate")
+        for f in e.atoms(AppliedUndef):
+            raise ModelError(f"{what} depends on {f}, which is not among the coordinates "
+                             f"{self.coordinates}")
+        if T in e.free_symbols:
+            raise ModelError(f"{what} depends explicitly on t: the Chaplygin conditions (1.3) "
+                             "require L and the constraints to be free of t")
+        if any(e.has(self.qdd[c]) for c in self.coordinates):
+            raise ModelError(f"{what} contains an acceleration; L and the constraints (1.1) "
+                             "depend on coordinates and velocities only")
+        return e
+
+    def _check_chaplygin(self):
+        dep_q = [self.q[c] for c in self.dependent_coordinates]
+        dep_qd = [self.qd[c] for c in self.dependent_coordinates]
+        for s in dep_q:
+            if self._L.has(s):
+                raise ModelError(f"L depends on the dependent coordinate {s} (Chaplygin "
+                                 "condition, 1.3: L must be free of q_(eps+beta))")
+        for c, phi in self._phi.items():
+            for s in dep_q:
+                if phi.has(s):
+                    raise ModelError(f"the constraint for {c}dot depends on the dependent "
+                                     f"coordinate {s} (Chaplygin condition, 1.3)")
+            for s in dep_qd:
+                if phi.has(s):
+                    raise ModelError(f"the constraint for {c}dot is written with another "
+                                     f"dependent velocity {s}: write each dependent velocity "
+                                     "in the independent velocities only (1.1)")
+
+    def to_public(self, expr):
+        """Rewrite an expression of the internal symbols (x, xdot, xddot) in dynamicsymbols."""
+        return sp.sympify(expr).xreplace(self._to_public)
+
+    # ----- properties -----------------------------------------------------
+    @property
+    def is_holonomic(self):
+        """True when there are no dependent velocities (g = 0)."""
+        return not self.dependent_coordinates
+
+    @property
+    def _sig(self):
+        return self.independent_coordinates
+
+    @property
+    def _Ltilde(self):
+        if "Lt" not in self._cache:
+            self._cache["Lt"] = self._L.xreplace(
+                {self.qd[c]: phi for c, phi in zip(self.dependent_coordinates, self._phi.values())})
+        return self._cache["Lt"]
+
+    @property
+    def L_tilde(self):
+        """L~: the Lagrangian with the dependent velocities substituted (after 1.2)."""
+        return self.to_public(self._Ltilde)
+
+    def _dLdqdep_tilde(self):
+        """(dL/d qdot_(eps+beta)) with the constraints substituted, per dependent coordinate."""
+        sub = {self.qd[c]: phi for c, phi in zip(self.dependent_coordinates, self._phi.values())}
+        return [self._L.diff(self.qd[c]).xreplace(sub) for c in self.dependent_coordinates]
+
+    def _velocity_symbols(self):
+        return [self.qdd[c] for c in self._sig] + [self.qd[c] for c in self._sig]
+
+    def _dt(self, f):
+        """Total time derivative of f(q_sigma, qdot_sigma) along a motion."""
+        return sum((f.diff(self.q[c]) * self.qd[c] + f.diff(self.qd[c]) * self.qdd[c]
+                    for c in self._sig), sp.S.Zero)
+
+    # ----- (1.4) ----------------------------------------------------------
+    def _eom(self):
+        if "eom" not in self._cache:
+            Lt = self._Ltilde
+            P = self._dLdqdep_tilde()
+            eqs = []
+            for c in self._sig:
+                qd, q = self.qd[c], self.q[c]
+                e = self._dt(Lt.diff(qd)) - Lt.diff(q)
+                for Pb, phi in zip(P, self._phi.values()):
+                    e -= Pb * (self._dt(phi.diff(qd)) - phi.diff(q))
+                eqs.append(collected(e, self._velocity_symbols()))
+            self._cache["eom"] = eqs
+        return self._cache["eom"]
+
+    def equations_of_motion(self):
+        """The generalized Chaplygin equations (1.4), one expression (= 0) per q_sigma."""
+        return [self.to_public(e) for e in self._eom()]
+
+    def _accelerations(self):
+        if "acc" not in self._cache:
+            qdd = [self.qdd[c] for c in self._sig]
+            eqs = sp.Matrix(self._eom())
+            M = eqs.jacobian(qdd)
+            rest = eqs.xreplace({a: 0 for a in qdd})
+            self._require_regular(M, "the mass matrix d(1.4)/d(qddot_sigma)", self._sample_time)
+            if M.is_diagonal():
+                sol = [-rest[i] / M[i, i] for i in range(len(qdd))]
+            else:
+                sol = list(M.LUsolve(-rest))
+            vel = [self.qd[c] for c in self._sig]
+            self._cache["acc"] = {a: rational(x, vel) for a, x in zip(qdd, sol)}
+        return self._cache["acc"]
+
+    def accelerations(self):
+        """The accelerations solved from (1.4): {q_sigma.diff(t, 2): expression}."""
+        return {self.to_public(k): self.to_public(v) for k, v in self._accelerations().items()}
+
+    def _require_regular(self, M, what, sample):
+        fn = sp.lambdify(sorted(M.free_symbols, key=str), M, modules="mpmath")
+        syms = sorted(M.free_symbols, key=str)
+        rng = random.Random(7)
+        with mpmath.workdps(DPS):
+            for _ in range(3):
+                pt = sample(rng)
+                try:
+                    d = mpmath.det(mpmath.matrix(fn(*[pt[s] for s in syms])))
+                except (ZeroDivisionError, ValueError):
+                    continue
+                if abs(d) > mpmath.mpf(10) ** (-DPS // 2):
+                    return
+        raise ModelError(f"singular kinetic energy: {what} is singular, so the accelerations "
+                         "cannot be solved (1.4); is the kinetic energy positive definite in "
+                         "the independent velocities?")
+
+    # ----- (1.10), (1.11) -------------------------------------------------
+    def _euler_residuals(self):
+        return [sum((phi.diff(self.qd[c]) * self.qd[c] for c in self._sig), sp.S.Zero) - phi
+                for phi in self._phi.values()]
+
+    def check_homogeneity(self):
+        """Check (1.10): every constraint is homogeneous of degree one in the independent
+        velocities.  Raises ModelError if not (there is then no energy integral 1.11)."""
+        if "1.10" not in self._cache:
+            res = []
+            for c, r in zip(self.dependent_coordinates, self._euler_residuals()):
+                chk = check_zero("1.10", f"{_name(c)}dot = phi is homogeneous of degree one "
+                                 "in the independent velocities (Euler's relation)",
+                                 r, self._sample_time, seed=10)
+                if not chk.holds:
+                    raise ModelError(
+                        f"the constraint {_name(c)}dot = {self.constraints[c.diff(T)]} is not "
+                        "homogeneous of degree one in the independent velocities (1.10): "
+                        "there is no energy integral (1.11), so no Whittaker reduction")
+                res.append(chk)
+            self._cache["1.10"] = res
+        return self._cache["1.10"]
+
+    def _energy(self):
+        if "E" not in self._cache:
+            Lt = self._Ltilde
+            E = sum((self.qd[c] * Lt.diff(self.qd[c]) for c in self._sig), sp.S.Zero) - Lt
+            self._cache["E"] = collected(E, self._velocity_symbols())
+        return self._cache["E"]
+
+    def energy(self):
+        """The energy integral (1.11): sum qdot_sigma dL~/dqdot_sigma - L~ (its value is h)."""
+        self.check_homogeneity()
+        return self.to_public(self._energy())
+
+    def _energy_rate(self):
+        """dE/dt along the solutions of (1.4): zero when (1.11) is an integral."""
+        E = self._energy()
+        return self._dt(E).xreplace(self._accelerations())
+
+    # ----- random admissible points --------------------------------------
+    def _sample_params(self, rng, pt):
+        for p in self.parameters:
+            val = rng.uniform(0.5, 2.0)
+            pt[p] = -val if p.is_negative else val
+        return pt
+
+    def _sample_time(self, rng):
+        """A random point in (parameters, q, qdot, qddot)."""
+        pt = self._sample_params(rng, {})
+        for c in self.coordinates:
+            pt[self.q[c]] = rng.uniform(0.1, 1.2) * (-1 if self.q[c].is_negative else 1)
+            pt[self.qd[c]] = rng.choice((-1, 1)) * rng.uniform(0.2, 1.5)
+            pt[self.qdd[c]] = rng.uniform(-1, 1)
+        return pt
+
+    # ----- steps ----------------------------------------------------------
+    def _steps(self):
+        """The time-domain steps (1.1)-(1.4), (1.10), (1.11) for this system."""
+        steps = []
+        if self.is_holonomic:
+            steps.append(Step("1.1", "constraints: none (g = 0, a holonomic system)", []))
+        else:
+            steps.append(Step("1.1", "the dependent velocities (Chaplygin type, 1.3: free of the "
+                              "dependent coordinates and of t)",
+                              [eq(sp.Symbol(_name(c) + "dot"), phi)
+                               for c, phi in zip(self.dependent_coordinates, self._phi.values())]))
+        steps.append(Step("1.2", "L~: the Lagrangian with the constraints substituted",
+                          [eq(sp.Symbol("Ltilde"), self._Ltilde)]))
+        chk = check_zero("1.4", "the solved accelerations satisfy (1.4)",
+                         [e.xreplace(self._accelerations()) for e in self._eom()],
+                         self._sample_time, seed=4)
+        steps.append(Step("1.4", "the generalized Chaplygin equations, one per q_sigma",
+                          [eq(e, 0) for e in self._eom()], chk))
+        steps.append(Step("1.4", "the accelerations solved from (1.4)",
+                          [eq(k, v) for k, v in self._accelerations().items()]))
+        if not self.is_holonomic:
+            h = self.check_homogeneity()
+            worst = max(h, key=lambda c: (c.method == "numeric", c.max_residual))
+            steps.append(Step("1.10", "the constraints are homogeneous of degree one",
+                              [eq(r + phi, phi) for r, phi in
+                               zip(self._euler_residuals(), self._phi.values())], worst))
+        chk = check_zero("1.11", "dE/dt = 0 along the solutions of (1.4)",
+                         self._energy_rate(), self._sample_time, seed=11)
+        steps.append(Step("1.11", "the energy integral", [eq(self._energy(), sp.Symbol("h"))],
+                          chk))
+        return steps
+
+    @property
+    def steps(self):
+        """The time-domain steps as a :class:`~whittaker_teach.steps.Derivation`."""
+        if "steps" not in self._cache:
+            self._cache["steps"] = Derivation(f"{self.name}: Chaplygin equations", self._steps())
+        return self._cache["steps"]
+
+    def verify(self):
+        """Re-run the time-domain checks; a :class:`~whittaker_teach.steps.Report`."""
+        self._cache.pop("steps", None)
+        self._cache.pop("1.10", None)
+        return Report(s.check for s in self.steps if s.check)
+
+    def show(self, latex=False):
+        """Show the time-domain steps (notebook: rendered maths; terminal: Unicode)."""
+        return self.steps.show(latex=latex)
+
+    # ----- reduction ------------------------------------------------------
+    def reduce(self, coordinate, direction=+1):
+        """The Whittaker reduction with ``coordinate`` as q_eps, travelled with
+        sign(qdot_eps) = ``direction``: a :class:`~whittaker_teach.reduction.Reduction`."""
+        from .reduction import Reduction
+        return Reduction(self, coordinate, direction)
+
+    def __repr__(self):
+        kind = "holonomic" if self.is_holonomic else "non-holonomic"
+        return (f"<ChaplyginSystem {self.name!r}: {kind}, coordinates "
+                f"{[_name(c) for c in self.coordinates]}>")
