@@ -111,6 +111,15 @@ class Derivation:
     def labels(self):
         return [s.label for s in self.steps]
 
+    def only(self, *labels):
+        """The steps with these paper labels, in order, as a smaller Derivation.
+
+        >>> import whittaker_teach as wt
+        >>> wt.examples.sledge().reduce("x").steps.only("1.16", "1.23").labels
+        ['1.16', '1.23']
+        """
+        return Derivation(self.title, [s for s in self.steps if s.label in labels])
+
     def show(self, latex=False):
         from .render import show
         return show(self, latex=latex)
