@@ -251,7 +251,7 @@ class Reduction:
         if "Efn" not in self._cache:
             E = self.system._energy()
             syms = sorted(E.free_symbols, key=str)
-            self._cache["Efn"] = (syms, sp.lambdify(syms, E, modules="mpmath"))
+            self._cache["Efn"] = (syms, sp.lambdify(syms, E, modules="mpmath", docstring_limit=0))
         return self._cache["Efn"]
 
     def _sample(self, rng):
@@ -291,22 +291,25 @@ class Reduction:
         st.append(Step("1.5", f"change of variable: {ne} replaces t, q' = dq/d{ne}",
                        [eq(S.qd[c], v * qp[c]) for c in nus]))
         st.append(Step("1.6", "Omega: L~ with (1.5) substituted",
-                       [eq(sp.Symbol("Omega"), collected(Om, [v]))]))
+                       lambda: [eq(sp.Symbol("Omega"), collected(Om, [v]))]))
         tidy = lambda e: collected(e, [v] + list(qp.values()))  # noqa: E731
-        st.append(Step("1.7", "dOmega/dqdot_eps", [eq(d("Omega", v), tidy(Omv))], check_identity(
+        st.append(Step("1.7", "dOmega/dqdot_eps", lambda: [eq(d("Omega", v), tidy(Omv))],
+                       check_identity(
             "1.7", "dOmega/dqdot_eps = sum_sigma dL~/dqdot_sigma qdot_sigma/qdot_eps", Omv,
             self._sub15(sum((Lt.diff(S.qd[c]) * S.qd[c] for c in sig), sp.S.Zero)) / v, smp)))
-        st.append(Step("1.8", "dOmega/dq'_nu", [eq(d("Omega", qp[c]), tidy(Om.diff(qp[c])))
-                                               for c in nus], check_identity(
+        st.append(Step("1.8", "dOmega/dq'_nu", lambda: [eq(d("Omega", qp[c]),
+                                                          tidy(Om.diff(qp[c]))) for c in nus],
+                       check_identity(
             "1.8", "dOmega/dq'_nu = qdot_eps dL~/dqdot_nu", [Om.diff(qp[c]) for c in nus],
             [v * self._sub15(Lt.diff(S.qd[c])) for c in nus], smp)))
-        st.append(Step("1.9", "dOmega/dq_sigma", [eq(d("Omega", qs[c]), tidy(Om.diff(qs[c])))
-                                                  for c in sig], check_identity(
+        st.append(Step("1.9", "dOmega/dq_sigma", lambda: [eq(d("Omega", qs[c]),
+                                                             tidy(Om.diff(qs[c]))) for c in sig],
+                       check_identity(
             "1.9", "dOmega/dq_sigma = dL~/dq_sigma", [Om.diff(qs[c]) for c in sig],
             [self._sub15(Lt.diff(qs[c])) for c in sig], smp)))
         E13 = v * Omv - Om
         st.append(Step("1.13", "the energy integral in the new variables",
-                       [eq(collected(E13, [v]), h)], check_identity(
+                       lambda: [eq(collected(E13, [v]), h)], check_identity(
             "1.13", "qdot_eps dOmega/dqdot_eps - Omega = (1.11) under (1.5)", E13,
             self._sub15(S._energy()), smp)))
         st.append(Step("1.12", f"(1.13) solved for qdot_eps, the branch with sign(qdot_eps) = "
@@ -391,9 +394,9 @@ class Reduction:
             sub[S.qd[c]] = vs * self._qp[c]
             sub[S.qdd[c]] = vdot * self._qp[c] + vs**2 * self._qpp[c]
         eom = dict(zip(S.independent_coordinates, S._eom()))
-        shown = [collected(e, [*self._qpp.values(), *self._qp.values()]) for e in self._eqs]
+        shown = [*self._qpp.values(), *self._qp.values()]
         st = [Step("1.26", "the generalized Whittaker equations, one per q_nu",
-                   [eq(e, 0) for e in shown], check_identity(
+                   lambda: [eq(collected(e, shown), 0) for e in self._eqs], check_identity(
                        "1.26", "qdot_eps x (1.26) = the nu-th equation of (1.4) on the energy "
                        "surface (1.12)", [vs * e for e in self._eqs],
                        [eom[c].xreplace(sub) for c in nus], smp))]

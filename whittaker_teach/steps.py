@@ -22,6 +22,10 @@ __all__ = ["Step", "Derivation", "Report", "eq", "notation", "partial"]
 class Step:
     """One numbered step of the paper, for the system at hand.
 
+    ``equations`` may be given as a list or as a function returning one: the
+    readable form of a long result (a targeted rewrite) is then computed only
+    when the step is shown, not when it is derived or verified.
+
     >>> import sympy as sp
     >>> v, u, th = sp.symbols("v u theta")
     >>> s = Step("3.2", "the constraint", [sp.Eq(v, u*sp.tan(th))])
@@ -32,9 +36,16 @@ class Step:
 
     label: str
     title: str
-    equations: list = field(default_factory=list)
+    shown: object = field(default_factory=list, repr=False)
     check: Check | None = None
     note: str = ""
+
+    @property
+    def equations(self) -> list:
+        """The equations of the step (SymPy ``Eq``), in the paper's notation."""
+        if callable(self.shown):
+            object.__setattr__(self, "shown", list(self.shown()))
+        return self.shown
 
     @property
     def status(self) -> str:

@@ -284,7 +284,7 @@ class ChaplyginSystem:
         return {self.to_public(k): self.to_public(v) for k, v in self._accelerations().items()}
 
     def _require_regular(self, M, what, sample):
-        fn = sp.lambdify(sorted(M.free_symbols, key=str), M, modules="mpmath")
+        fn = sp.lambdify(sorted(M.free_symbols, key=str), M, modules="mpmath", docstring_limit=0)
         syms = sorted(M.free_symbols, key=str)
         rng = random.Random(7)
         with mpmath.workdps(DPS):
