@@ -44,7 +44,9 @@ def step_latex(step) -> str:
         inner = body[0]
     else:
         rows = [b.replace("=", "&=", 1) if "=" in b else "&" + b for b in body]
-        inner = r"\begin{aligned}" + r" \\ ".join(rows) + r"\end{aligned}"
+        # rows end with \cr, not \\: Sphinx wraps any display containing \\ in a
+        # split environment, where MathJax refuses \tag
+        inner = r"\begin{aligned}" + r" \cr ".join(rows) + r"\end{aligned}"
     return inner + " " + _tag(step.label)
 
 
