@@ -237,6 +237,12 @@ class Reduction:
         return {self.to_public(k): self.to_public(v) for k, v in self._accelerations().items()}
 
     @property
+    def dependent_momenta(self):
+        """(dL/dqdot_(eps+beta))* of (1.26), in q', q and h: {dependent coordinate: expr}."""
+        return {self._dep_fn(c): self.to_public(P)
+                for c, P in zip(self.system.dependent_coordinates, self._Pstar)}
+
+    @property
     def time_rate(self):
         """dt/dq_eps = 1/qdot_eps, with qdot_eps from (1.12): t(q_eps) by quadrature."""
         return self.to_public(1 / self._vstar)
@@ -377,12 +383,16 @@ class Reduction:
         st.append(Step("1.25", "derivatives of qdot*", [], check_identity(
             "1.25", "dqdot*/dq'_nu = dqdot_dep/dqdot_nu and dqdot*/dq_sigma = "
             "(1/qdot_eps) dqdot_dep/dq_sigma", lhs, rhs, smp)))
-        Pname = [notation(f"(∂L/∂{sp.pretty(S.qd[c])})*",
-                          rf"\left(\frac{{\partial L}}{{\partial {sp.latex(S.qd[c])}}}\right)^{{*}}")
-                 for c in deps]
-        st.append(Step("1.26", "(dL/dqdot_dep)*: in q', q and h", [eq(a, b) for a, b in
-                                                                   zip(Pname, self._Pstar)]))
         return st
+
+    def _momentum_step(self):
+        """The step after (1.26): (dL/dqdot_dep)* written in q', q and h."""
+        S = self.system
+        names = [notation(f"(∂L/∂{sp.pretty(S.qd[c])})*",
+                          rf"\left(\frac{{\partial L}}{{\partial {sp.latex(S.qd[c])}}}\right)^{{*}}")
+                 for c in S.dependent_coordinates]
+        return Step("1.26", "where (dL/dqdot_dep)* is dL/dqdot_dep in q', q and h",
+                    [eq(a, b) for a, b in zip(names, self._Pstar)])
 
     def _equation_steps(self):
         S, smp = self.system, self._sample
@@ -400,6 +410,8 @@ class Reduction:
                        "1.26", "qdot_eps x (1.26) = the nu-th equation of (1.4) on the energy "
                        "surface (1.12)", [vs * e for e in self._eqs],
                        [eom[c].xreplace(sub) for c in nus], smp))]
+        if S.dependent_coordinates:
+            st.append(self._momentum_step())
         acc = self._accelerations()
         st.append(Step("1.26", "q''_nu solved from (1.26)", [eq(k, v) for k, v in acc.items()]))
         if S.is_holonomic:
@@ -455,6 +467,22 @@ class Reduction:
     def __repr__(self):
         return (f"<Reduction of {self.system.name!r}: q_eps = {self.independent}, "
                 f"direction {self.direction:+d}, {len(self._nus)} equation(s) (1.26)>")
+
+    # ----- numerics (whittaker_teach.numerics) -----------------------------
+    def simulate(self, q0, qp0, h, span, params, method="DOP853", rtol=1e-9, atol=None,
+                 **options):
+        """Integrate the reduced model (1.26) in q_eps, with t(q_eps) and the dependent
+        coordinates recovered by quadrature alongside (1.12), (1.23).
+
+        ``q0``: {coordinate: value} at the start, q_eps included; ``qp0``:
+        {q_nu: dq_nu/dq_eps}; ``h``: the energy; ``span``: (q_eps start, q_eps
+        end).  Options: ``on_turning_point`` (``"raise"``: a ChartError where
+        qdot_eps vanishes; ``"switch"``: continue in time across it),
+        ``turning_tol``, ``t0``, ``dense``.  Returns a
+        :class:`~whittaker_teach.numerics.results.Path`.
+        """
+        from .numerics.reduced_model import simulate
+        return simulate(self, q0, qp0, h, span, params, method, rtol, atol, **options)
 
 
 def _assume(c):

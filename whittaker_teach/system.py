@@ -416,3 +416,19 @@ class ChaplyginSystem:
         kind = "holonomic" if self.is_holonomic else "non-holonomic"
         return (f"<ChaplyginSystem {self.name!r}: {kind}, coordinates "
                 f"{[_name(c) for c in self.coordinates]}>")
+
+    # ----- numerics (whittaker_teach.numerics) -----------------------------
+    def simulate(self, q0, qdot0, t_span, params, method="DOP853", rtol=1e-9, atol=None,
+                 **options):
+        """Integrate the full model in time: (1.4) and the constraints (1.3).
+
+        ``q0``: {coordinate: value} for every coordinate; ``qdot0``: {coordinate:
+        value} for the independent ones; ``params``: {parameter: value}.
+        ``method``: a scipy method (``"DOP853"``, ``"RK45"``, ``"Radau"``,
+        ``"LSODA"``, ...) or ``"DLA"`` (fixed step ``dt=``, structure preserving);
+        ``atol=None`` means atol = rtol.  Options: ``formulation`` (``"auto"``,
+        ``"chaplygin"``, ``"multiplier"``), ``t_eval``, ``dense``.  Returns a
+        :class:`~whittaker_teach.numerics.results.Trajectory`.
+        """
+        from .numerics.time_model import simulate
+        return simulate(self, q0, qdot0, t_span, params, method, rtol, atol, **options)

@@ -153,3 +153,11 @@ def test_rolling_disk_reduces_with_theta():
     red = wt.examples.rolling_disk().reduce("theta")
     assert [str(c) for c in red.coordinates] == ["phi(theta)"]
     assert set(map(str, red.constraint_rates)) == {"x(theta)", "y(theta)"}
+
+
+def test_dependent_momenta_and_step_order(sledge_red):
+    y = sp.Function("y")(X)
+    P = sledge_red.dependent_momenta[y]
+    # (dL/dydot)* = m ydot = m xdot tan(theta), with xdot from (1.12)
+    assert sp.expand(P - m * sledge_red.velocity * sp.tan(TH)) == 0
+    assert sledge_red.steps["1.26"].title.startswith("the generalized Whittaker equations")
