@@ -192,9 +192,16 @@ class Reduction:
                 sol = [-rest[i] / M[i, i] for i in range(len(qpp))]
             else:
                 sol = list(M.LUsolve(-rest))
-            qp = list(self._qp.values())
-            self._cache["acc"] = {a: rational(x, qp) for a, x in zip(qpp, sol)}
+            self._cache["acc"] = dict(zip(qpp, sol))
         return self._cache["acc"]
+
+    def _tidy_accelerations(self):
+        """q''_nu as one fraction each, to read (``rewrite.rational``)."""
+        if "acc_tidy" not in self._cache:
+            qp = list(self._qp.values())
+            self._cache["acc_tidy"] = {a: rational(x, qp)
+                                       for a, x in self._accelerations().items()}
+        return self._cache["acc_tidy"]
 
     # ----- public results -------------------------------------------------
     @property
@@ -234,7 +241,8 @@ class Reduction:
 
     def accelerations(self):
         """q''_nu solved from (1.26): {theta(x).diff(x, 2): expression}."""
-        return {self.to_public(k): self.to_public(v) for k, v in self._accelerations().items()}
+        return {self.to_public(k): self.to_public(v)
+                for k, v in self._tidy_accelerations().items()}
 
     @property
     def dependent_momenta(self):
@@ -412,8 +420,9 @@ class Reduction:
                        [eom[c].xreplace(sub) for c in nus], smp))]
         if S.dependent_coordinates:
             st.append(self._momentum_step())
-        acc = self._accelerations()
-        st.append(Step("1.26", "q''_nu solved from (1.26)", [eq(k, v) for k, v in acc.items()]))
+        self._accelerations()       # (1.26) must be solvable for q''
+        st.append(Step("1.26", "q''_nu solved from (1.26)",
+                       lambda: [eq(k, v) for k, v in self._tidy_accelerations().items()]))
         if S.is_holonomic:
             st.append(self._step_127())
         x = self.independent

@@ -16,6 +16,9 @@ __all__ = ["collected", "rational", "pythagoras"]
 OPS_LIMIT = 2000
 
 
+#: ``rational`` (cancel) is tried only below this size: its cost grows very fast with
+#: the number of roots and functions it must treat as generators.
+RATIONAL_OPS_LIMIT = 320
 #: Coefficients larger than this are left expanded rather than factored.
 FACTOR_LIMIT = 200
 
@@ -55,8 +58,11 @@ def pythagoras(expr):
 
 def rational(expr, symbols=()):
     """``cancel`` (one fraction, common factors removed; roots and functions such as
-    tan are treated as generators), then the numerator collected on ``symbols``."""
-    if sp.count_ops(expr) > OPS_LIMIT:
+    tan are treated as generators), then the numerator collected on ``symbols``.
+
+    Expressions larger than ``RATIONAL_OPS_LIMIT`` operations are returned as they
+    are: the rewrite is for reading, and results are correct either way."""
+    if sp.count_ops(expr) > RATIONAL_OPS_LIMIT:
         return expr
     num, den = sp.fraction(sp.cancel(expr))
     return collected(num, symbols) / pythagoras(sp.factor(den))

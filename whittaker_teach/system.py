@@ -275,13 +275,21 @@ class ChaplyginSystem:
                 sol = [-rest[i] / M[i, i] for i in range(len(qdd))]
             else:
                 sol = list(M.LUsolve(-rest))
-            vel = [self.qd[c] for c in self._sig]
-            self._cache["acc"] = {a: rational(x, vel) for a, x in zip(qdd, sol)}
+            self._cache["acc"] = dict(zip(qdd, sol))
         return self._cache["acc"]
+
+    def _tidy_accelerations(self):
+        """The accelerations as one fraction each, to read (``rewrite.rational``)."""
+        if "acc_tidy" not in self._cache:
+            vel = [self.qd[c] for c in self._sig]
+            self._cache["acc_tidy"] = {a: rational(x, vel)
+                                       for a, x in self._accelerations().items()}
+        return self._cache["acc_tidy"]
 
     def accelerations(self):
         """The accelerations solved from (1.4): {q_sigma.diff(t, 2): expression}."""
-        return {self.to_public(k): self.to_public(v) for k, v in self._accelerations().items()}
+        return {self.to_public(k): self.to_public(v)
+                for k, v in self._tidy_accelerations().items()}
 
     def _require_regular(self, M, what, sample):
         fn = sp.lambdify(sorted(M.free_symbols, key=str), M, modules="mpmath", docstring_limit=0)
@@ -375,7 +383,7 @@ class ChaplyginSystem:
         steps.append(Step("1.4", "the generalized Chaplygin equations, one per q_sigma",
                           [eq(e, 0) for e in self._eom()], chk))
         steps.append(Step("1.4", "the accelerations solved from (1.4)",
-                          [eq(k, v) for k, v in self._accelerations().items()]))
+                          lambda: [eq(k, v) for k, v in self._tidy_accelerations().items()]))
         if not self.is_holonomic:
             h = self.check_homogeneity()
             worst = max(h, key=lambda c: (c.method == "numeric", c.max_residual))

@@ -87,7 +87,7 @@ def section3_steps(red):
                    "terms cancel", [eq(shown, 0)], check_identity(
         "3.9", "the expanded form equals (1.26) (the OCR's last term lacks the root of "
         "2h - k^2 theta^2 and the factor 1 + tan^2 theta)", printed, red._eqs[0], smp)))
-    qpp = red._accelerations()[thpp]
+    qpp = red._tidy_accelerations()[thpp]
     cleared = collected(J * R * (thpp - qpp), [thpp, thp])
     printed = J * R * thpp + J * (-R * sp.tan(th) + k**2 * th) * thp**2 + m * k**2 * th * sec2
     st.append(Step("3.10", "(1.26) cleared of denominators: J (2h - k^2 theta^2) (theta'' - "
