@@ -29,7 +29,7 @@ NOTEBOOK_DIRS := book exercises
 
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 
-.PHONY: help setup mathjax book site derive test unit doctest nbval browser notebooks clean
+.PHONY: help setup mathjax book site derive test unit doctest nbval browser notebooks exercises bench clean
 
 help:
 	@sed -n '3,12p' Makefile | sed 's/^# \{0,1\}//'
@@ -102,6 +102,18 @@ browser: setup
 # ---------------------------------------------------------------- notebooks
 notebooks: setup
 	PYTHONHASHSEED=0 $(PYTHON) scripts/execute_notebooks.py $(NOTEBOOK_DIRS)
+
+# The exercise notebooks (student and solution) from their sources in
+# exercises/src/; only changed ones are re-executed (EXERCISES_ARGS=--all: every one).
+exercises: setup
+	PYTHONHASHSEED=0 $(PYTHON) scripts/make_exercises.py $(EXERCISES_ARGS)
+
+# ---------------------------------------------------------------- numerics
+# Speed against error and the hard cases: re-run the studies whose stored
+# figures and tables the book shows (book/figures/numerics/; about 5 minutes).
+# `python -m whittaker_teach bench numerics --quick` is the short version.
+bench: setup
+	PYTHONHASHSEED=0 $(PYTHON) -m whittaker_teach.numerics.figures
 
 # ---------------------------------------------------------------- clean
 clean:

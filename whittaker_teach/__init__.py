@@ -28,6 +28,7 @@ __all__ = [
     "ModelTypeError",
     "ChartError",
     "examples",
+    "exercises",
     "__version__",
 ]
 
@@ -39,6 +40,7 @@ _LAZY = {
     "Report": ("steps", "Report"),
     "Check": ("verify", "Check"),
     "examples": ("examples", None),
+    "exercises": ("exercises", None),
 }
 
 

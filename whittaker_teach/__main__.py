@@ -8,6 +8,9 @@ Commands::
                                   each with its paper number and its check
     bench derivation [--repeat N] fresh-process time of the whole derivation with
                                   verification, against sympy.physics.mechanics
+    bench numerics [--quick] [--json FILE] [--plot FILE] [--quiet]
+                                  speed against error: the full, reduced and exact
+                                  models of the sledge (whittaker_teach.numerics)
 """
 
 import argparse
@@ -46,6 +49,9 @@ def _derive(args):
 
 
 def _bench(args):
+    if args.what == "numerics":
+        from .numerics.work_precision import main as numerics
+        return numerics(args)
     from .bench import main
     return main(args)
 
@@ -64,8 +70,12 @@ def main(argv=None):
                    help="the sign of qdot_eps (default +1)")
     d.set_defaults(func=_derive)
     b = sub.add_parser("bench", help="benchmarks that print figures")
-    b.add_argument("what", choices=("derivation",))
+    b.add_argument("what", choices=("derivation", "numerics"))
     b.add_argument("--repeat", type=int, default=3, help="fresh processes per measurement")
+    b.add_argument("--quick", action="store_true", help="numerics: a smaller study")
+    b.add_argument("--json", metavar="FILE", help="numerics: write every run to FILE")
+    b.add_argument("--plot", metavar="FILE", help="numerics: the error-against-time figure")
+    b.add_argument("--quiet", action="store_true", help="numerics: no progress bar")
     b.set_defaults(func=_bench)
     args = parser.parse_args(argv)
     return args.func(args)

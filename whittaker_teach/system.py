@@ -435,7 +435,8 @@ class ChaplyginSystem:
         ``method``: a scipy method (``"DOP853"``, ``"RK45"``, ``"Radau"``,
         ``"LSODA"``, ...) or ``"DLA"`` (fixed step ``dt=``, structure preserving);
         ``atol=None`` means atol = rtol.  Options: ``formulation`` (``"auto"``,
-        ``"chaplygin"``, ``"multiplier"``), ``t_eval``, ``dense``.  Returns a
+        ``"chaplygin"``, ``"multiplier"``), ``t_eval``, ``dense``, and for DLA
+        ``max_energy_error`` (a guard against a too coarse step).  Returns a
         :class:`~whittaker_teach.numerics.results.Trajectory`.
         """
         from .numerics.time_model import simulate

@@ -21,13 +21,14 @@ from dataclasses import dataclass
 from ._charged import charged_particle
 from ._cone import cone_particle
 from ._disk import rolling_disk
+from ._exact import sledge_exact
 from ._kepler import kepler
 from ._projectile import projectile
 from ._sledge import section3, sledge
 from ._sleigh import offset_sleigh
 
 __all__ = ["sledge", "section3", "projectile", "kepler", "offset_sleigh", "rolling_disk", "cone_particle",
-           "charged_particle", "catalogue", "get", "Example"]
+           "charged_particle", "catalogue", "get", "Example", "sledge_exact"]
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,105 @@
+# %% [markdown]
+# # The Kepler orbit with the polar angle as time
+#
+# For a planet, the polar angle $\varphi$ can take the place of time:
+# Whittaker's equation (1.27) then describes the orbit $r(\varphi)$ directly,
+# and the conics of Kepler's first law must be among its solutions.
+
+# %% [markdown] statement
+# A particle of mass $m$ moves in the field of a fixed centre, with potential
+# energy $-\mu m/r$:
+#
+# $$L = \tfrac12 m(\dot r^2 + r^2\dot\varphi^2) + \frac{\mu m}{r}.$$
+#
+# The system is holonomic. Take $\varphi$ as the independent coordinate:
+# $q_\varepsilon = \varphi$, $r' = dr/d\varphi$ (1.5).
+# **Assumptions:** $m, \mu > 0$, $r > 0$; the particle goes round with
+# $\dot\varphi > 0$ (the direction of travel).
+#
+# 1. `L_star`: the reduced Lagrangian $L^*(r', r)$ (1.6), (1.12), (1.16).
+# 2. `r_pp`: Whittaker's equation (1.27) for $L^*$, solved for $r''$.
+# 3. `h`: show that the conic $r = p/(1 + e\cos\varphi)$ ($p > 0$, $e \ge 0$)
+#    solves (1.27), and find the energy $h$ in terms of $p$ and $e$ (and $m$, $\mu$).
+#
+# Answer with SymPy expressions in the symbols defined below (or strings; `r'`
+# stands for $r'$).
+
+# %%
+from whittaker_teach.notebook import setup; setup()
+
+# %%
+import sympy as sp
+from whittaker_teach.exercises import check
+
+m, mu, p = sp.symbols("m mu p", positive=True)
+r = sp.Symbol("r", positive=True)
+phidot = sp.Symbol("phidot", positive=True)   # direction of travel
+phi, rprime, rprimeprime, h, e = sp.symbols("phi rprime rprimeprime h e")
+
+
+def d_dphi(f):
+    """d/dphi of f(r', r, phi) along a path (2.1)."""
+    return f.diff(phi) + f.diff(rprime)*rprimeprime + f.diff(r)*rprime
+
+# %% [markdown]
+# ## 1. The reduced Lagrangian $L^*$
+#
+# $\Omega$ (1.6) is $L$ with $\dot r = \dot\varphi\, r'$; solve
+# $\dot\varphi\,\partial\Omega/\partial\dot\varphi - \Omega = h$ (1.13) for
+# $\dot\varphi > 0$ and put the root in $L^* = \partial\Omega/\partial\dot\varphi$ (1.16).
+
+# %%
+### BEGIN SOLUTION
+Omega = m/2*((phidot*rprime)**2 + r**2*phidot**2) + mu*m/r   # (1.6)
+energy = sp.expand(phidot*Omega.diff(phidot) - Omega)        # (1.13)
+v = sp.Symbol("v")
+roots = sp.solve(sp.Eq(energy.subs(phidot, v), h), v)
+phidot_sol, = [s for s in roots if not s.could_extract_minus_sign()]
+L_star = sp.simplify(Omega.diff(phidot).subs(phidot, phidot_sol))
+### END SOLUTION
+### PLACEHOLDER: L_star = None  # your answer here: L* in r, rprime and h
+L_star
+
+# %%
+check("kepler-orbit", L_star, part="L_star")
+
+# %% [markdown]
+# ## 2. Whittaker's equation (1.27), solved for $r''$
+
+# %%
+### BEGIN SOLUTION
+whittaker = d_dphi(L_star.diff(rprime)) - L_star.diff(r)     # (1.27)
+r_pp, = sp.solve(whittaker, rprimeprime)
+r_pp = sp.factor(r_pp)
+### END SOLUTION
+### PLACEHOLDER: r_pp = None  # your answer here: r'' in r, rprime and h
+r_pp
+
+# %%
+check("kepler-orbit", r_pp, part="r_pp")
+
+# %% [markdown]
+# ## 3. The conic, and its energy
+#
+# Put $r = p/(1 + e\cos\varphi)$, with its $r'$ and $r''$, in the equation of
+# step 2. For which $h$ does the residual vanish for every $\varphi$?
+
+# %%
+### BEGIN SOLUTION
+conic = p/(1 + e*sp.cos(phi))
+on_orbit = {r: conic, rprime: conic.diff(phi)}
+residual = sp.factor(sp.together(conic.diff(phi, 2) - r_pp.subs(on_orbit)))
+h_conic, = sp.solve(residual, h)
+assert sp.simplify(residual.subs(h, h_conic)) == 0     # for every phi
+### END SOLUTION
+### PLACEHOLDER: h_conic = None  # your answer here: h in terms of p, e, m, mu
+h_conic
+
+# %% [markdown] solution
+# The residual is linear in $h$ and one value makes it vanish for every
+# $\varphi$: $h = -\dfrac{m\mu(1 - e^2)}{2p}$. It is negative for an
+# ellipse ($e < 1$: a bound orbit), zero for a parabola and positive for a
+# hyperbola, as Kepler's problem requires. The reduction never needed $t$.
+
+# %%
+check("kepler-orbit", h_conic, part="h")

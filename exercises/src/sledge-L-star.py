@@ -1,0 +1,102 @@
+# %% [markdown]
+# # The sledge's reduced Lagrangian
+#
+# Section 3 of Mei (1983) applies the reduction to a sledge on a horizontal
+# plane held by a torsional spring. Here you derive its reduced Lagrangian
+# $L^*$ (3.7) yourself, one step of the paper at a time.
+
+# %% [markdown] statement
+# The sledge has mass $m$ and moment of inertia $J$; its contact point is
+# $(x, y)$ and its axis makes the angle $\theta$ with $Ox$. With the spring
+# $U = -\tfrac12 k^2\theta^2$,
+#
+# $$L = \tfrac12 m(\dot x^2 + \dot y^2) + \tfrac12 J\dot\theta^2 - \tfrac12 k^2\theta^2
+# \qquad (3.1)$$
+#
+# $$\dot y = \dot x\tan\theta \qquad (3.2)$$
+#
+# Take $x$ as the independent coordinate ($q_\varepsilon = x$, $\theta' = d\theta/dx$).
+# **Assumptions:** $m, J, k > 0$; the sledge moves with $\dot x > 0$; $|\theta| < \pi/2$.
+#
+# 1. `Omega`: $\Omega$ (1.6), (3.6): $\tilde L$ (3.3) with $\dot\theta = \dot x\,\theta'$ (1.5).
+# 2. `xdot`: solve the energy integral (1.13) for $\dot x$ (1.12), (3.5), taking $\dot x > 0$.
+# 3. `L_star`: the reduced Lagrangian $L^* = \partial\Omega/\partial\dot x$ at that $\dot x$ (1.16), (3.7).
+#
+# Answer with SymPy expressions in the symbols defined below (or with strings
+# such as `"sqrt(2*h - k^2*theta^2)"`; `theta'` stands for $\theta'$).
+
+# %%
+from whittaker_teach.notebook import setup; setup()
+
+# %%
+import sympy as sp
+from whittaker_teach.exercises import check
+
+m, J, k = sp.symbols("m J k", positive=True)
+xdot = sp.Symbol("xdot", positive=True)      # direction of travel
+theta, thetadot, thetaprime, h = sp.symbols("theta thetadot thetaprime h")
+Ltilde = (m/2*xdot**2*(1 + sp.tan(theta)**2) + J/2*thetadot**2
+          - k**2*theta**2/2)                                   # (3.3)
+Ltilde
+
+# %% [markdown]
+# ## 1. $\Omega$ (1.6)
+#
+# Substitute (1.5), $\dot\theta = \dot x\,\theta'$, in $\tilde L$.
+
+# %%
+### BEGIN SOLUTION
+Omega = Ltilde.subs(thetadot, xdot*thetaprime)
+### END SOLUTION
+### PLACEHOLDER: Omega = None  # your answer here: L~ with thetadot = xdot*thetaprime
+Omega
+
+# %%
+check("sledge-L-star", Omega, part="Omega")
+
+# %% [markdown]
+# ## 2. $\dot x$ from the energy integral (1.13)
+#
+# The energy integral in the new variables is
+# $\dot x\,\partial\Omega/\partial\dot x - \Omega = h$ (1.13). Solve it for
+# $\dot x > 0$.
+
+# %%
+### BEGIN SOLUTION
+energy = sp.expand(xdot*sp.diff(Omega, xdot) - Omega)
+v = sp.Symbol("v")                            # xdot, without its sign
+roots = sp.solve(sp.Eq(energy.subs(xdot, v), h), v)
+display(roots)
+# the root with xdot > 0:
+xdot_sol, = [r for r in roots if not r.could_extract_minus_sign()]
+### END SOLUTION
+### PLACEHOLDER: xdot_sol = None  # your answer here: xdot in theta, thetaprime and h
+xdot_sol
+
+# %% [markdown] solution
+# The energy fixes only $\dot x^2$: (1.13) has the two roots $\pm$. The
+# assumption "the sledge moves with $\dot x > 0$" picks the one with the $+$ sign.
+
+# %%
+check("sledge-L-star", xdot_sol, part="xdot")
+
+# %% [markdown]
+# ## 3. $L^*$ (1.16)
+
+# %%
+### BEGIN SOLUTION
+L_star = sp.diff(Omega, xdot).subs(xdot, xdot_sol)   # (1.16)
+### END SOLUTION
+### PLACEHOLDER: L_star = None  # your answer here: dOmega/dxdot at xdot = xdot_sol
+L_star
+
+# %% [markdown] solution
+# The library derives the same $L^*$ (its square roots are written in another
+# order, which the check does not mind):
+
+# %% solution
+import whittaker_teach as wt
+wt.examples.sledge().reduce("x", direction=+1).L_star
+
+# %%
+check("sledge-L-star", L_star, part="L_star")

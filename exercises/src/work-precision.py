@@ -1,0 +1,138 @@
+# %% [markdown]
+# # Error against cost for two integrators
+#
+# Which integrator should you use for the sledge? "The most accurate" is not an
+# answer: accuracy costs right-hand-side evaluations. A work-precision
+# measurement puts the two side by side: the error each integrator achieves
+# against what it cost.
+
+# %% [markdown] statement
+# Integrate the sledge of section 3 in time, the full model (1.4) with the
+# constraint (3.2), with `system.simulate`, for $m = J = k = 1$, from $\theta = 0$,
+# $\dot\theta = a\,k/\sqrt J$, $\dot x = C$ with $a = 0.5$, $C = 1$, over $0 \le t \le 20$.
+# The exact motion is known, $\theta = a\sin t$ (3.15) with (3.12), (3.13):
+# `wt.examples.sledge_exact`.
+# **Assumptions:** the error of a run is the largest of $|x - x_\text{exact}|$,
+# $|y - y_\text{exact}|$, $|\theta - \theta_\text{exact}|$ at $t = 20$; its cost is
+# `nfev`, the number of evaluations of the right-hand side; the tolerances are
+# `rtol` $= 10^{-4}, 10^{-5}, \dots, 10^{-12}$ with `atol = rtol` (the default).
+#
+# 1. `nfev`: run `DOP853` and `RK45` on every tolerance (the function `run` below does
+#    one run). What is the fewest `nfev` with which DOP853 reaches an error $\le 10^{-8}$?
+# 2. `method`: plot error against cost for both. Which would you use for an error of
+#    $10^{-8}$: `"DOP853"` or `"RK45"`?
+# 3. `why`: why is it cheaper there? One of `"order"`, `"implicit"`, `"symplectic"`,
+#    `"tolerance"`.
+
+# %%
+from whittaker_teach.notebook import setup; setup()
+
+# %%
+import math
+
+import whittaker_teach as wt
+from whittaker_teach.exercises import check
+
+params = {"m": 1.0, "J": 1.0, "k": 1.0}
+exact = wt.examples.sledge_exact(params, a=0.5, phi=-math.pi/2, C=1.0)
+sledge = wt.examples.sledge()
+q0, qdot0 = exact.initial()
+T = 20.0
+RTOLS = [10.0**-n for n in range(4, 13)]
+
+
+def run(method, rtol):
+    """One run: (nfev, error at t = T)."""
+    traj = sledge.simulate(q0, qdot0, (0.0, T), params, method=method,
+                           rtol=rtol)
+    end = exact(T)
+    error = max(abs(float(traj.q[c][-1]) - end[c])
+                for c in ("x", "y", "theta"))
+    return traj.nfev, error
+
+# %% [markdown]
+# ## 1. The measurements
+
+# %%
+### BEGIN SOLUTION
+table = {method: [(rtol, *run(method, rtol)) for rtol in RTOLS]
+         for method in ("DOP853", "RK45")}
+for method, rows in table.items():
+    print(method)
+    for rtol, nfev, error in rows:
+        print(f"  rtol {rtol:7.0e}   nfev {nfev:5d}   error {error:8.1e}")
+nfev = min(n for _, n, e in table["DOP853"] if e <= 1e-8)
+### END SOLUTION
+### PLACEHOLDER: nfev = None  # your answer here: an integer
+nfev
+
+# %%
+check("work-precision", nfev, part="nfev")
+
+# %% [markdown]
+# ## 2. The work-precision diagram
+
+# %% solution
+import matplotlib.pyplot as plt
+
+fig, ax = plt.subplots(figsize=(5, 3.5))
+for method, marker in (("DOP853", "o"), ("RK45", "s")):
+    rows = table[method]
+    ax.loglog([n for _, n, _ in rows], [e for _, _, e in rows],
+              marker=marker, label=method)
+ax.axhline(1e-8, color="0.5", lw=0.8, ls="--")
+ax.set_xlabel("cost: nfev")
+ax.set_ylabel("error at $t = 20$")
+ax.legend()
+plt.show()
+
+# %%
+### BEGIN SOLUTION
+cost = {method: min(n for _, n, e in rows if e <= 1e-8)
+        for method, rows in table.items()}
+print(cost)
+method = min(cost, key=cost.get)
+### END SOLUTION
+### PLACEHOLDER: method = None  # your answer here: "DOP853" or "RK45"
+method
+
+# %% [markdown] solution
+# Wall-clock time tells the same story here, but it depends on the machine (this
+# cell's output is not checked):
+
+# %% solution tag=nbval-ignore-output
+import time
+
+for name in ("DOP853", "RK45"):
+    rtol = max(r for r, _, e in table[name] if e <= 1e-8)
+    start = time.perf_counter()
+    for _ in range(20):
+        run(name, rtol)
+    ms = (time.perf_counter() - start)/20*1e3
+    print(f"{name}: {ms:.1f} ms per run at rtol {rtol:.0e}")
+
+# %%
+check("work-precision", method, part="method")
+
+# %% [markdown]
+# ## 3. Why
+
+# %%
+### BEGIN SOLUTION
+why = "order"
+### END SOLUTION
+### PLACEHOLDER: why = None  # your answer here: "order", "implicit", "symplectic" or "tolerance"
+why
+
+# %% [markdown] solution
+# DOP853 is a Runge-Kutta method of order 8, RK45 of order 5 (both explicit, both
+# Dormand-Prince). Halving the step divides DOP853's error by about $2^8$ and
+# RK45's by about $2^5$: on the diagram DOP853's line is much steeper, so below
+# about $10^{-6}$ it needs far fewer evaluations for the same error, although
+# each of its steps costs 12 evaluations against 6; at loose tolerances the two
+# are close. Note also that `rtol` is not the error: here the
+# error at $t = 20$ is some ten times `rtol` for DOP853, so the tolerance must
+# be chosen from a measurement like this one.
+
+# %%
+check("work-precision", why, part="why")

@@ -1,0 +1,436 @@
+"""The exercise checkers: every form of a right answer is accepted, wrong ones
+are rejected with a hint of the kind of difference, bad input never raises.
+
+For each part of each exercise: at least two correct answers in different
+forms (strings, the library's own result, rewritten with other identities),
+at least three mutations (a dropped factor, a flipped sign, a wrong power)
+with the kind of hint expected, and every kind of bad input.
+"""
+import subprocess
+import sys
+
+import pytest
+import sympy as sp
+
+import whittaker_teach as wt
+from whittaker_teach.exercises import Feedback, check, exercises, parts
+from whittaker_teach.exercises.catalog import EXERCISES
+from whittaker_teach.exercises.parsing import AnswerError, read_answer
+
+# (exercise, part): (correct forms, [(wrong answer, words its hint must contain)])
+CASES = {
+    ("projectile-path", "L_star"): (
+        ["sqrt(2*(h - m*g*y))*sqrt(m*(1 + y'^2))", "sqrt(2*m*(h - m*g*y)*(1 + yprime**2))",
+         "LIB:projectile:x:L_star"],
+        [("sqrt(2*(h - m*g*y))*sqrt(1 + y'^2)", "power of m is too low by 1/2"),
+         ("-sqrt(2*(h - m*g*y))*sqrt(m*(1 + y'^2))", "sign"),
+         ("2*(h - m*g*y)*sqrt(m*(1 + y'^2))", "power")]),
+    ("projectile-path", "y_pp"): (
+        ["g*(1 + y'^2)/(2*(g*y - h/m))", "-m*g*(1 + yprime^2)/(2*(h - m*g*y))"],
+        [("g*(1 + y'^2)/(g*y - h/m)", "constant factor"),
+         ("-g*(1 + y'^2)/(2*(g*y - h/m))", "sign"),
+         ("g*(1 + y'^2)^2/(2*(g*y - h/m))", "power")]),
+    ("projectile-path", "path"): (
+        ["x*tan(alpha) - g*x^2*(1 + tan(alpha)^2)/(2*v0^2)",
+         "x*tan(alpha) - g*x**2*sec(alpha)**2/(2*v0**2)",
+         "(x*sin(2*alpha) - g*x^2/v0^2)/(2*cos(alpha)^2)"],
+        [("x*tan(alpha) - g*x^2/(v0^2*cos(alpha)^2)", "2 times"),
+         ("x*tan(alpha) + g*x^2/(2*v0^2*cos(alpha)^2)", "sign"),
+         ("x*tan(alpha) - g*x^2/(2*v0*cos(alpha)^2)", "v0")]),
+    ("kepler-orbit", "L_star"): (
+        ["sqrt(2*h + 2*m*mu/r)*sqrt(m*(r^2 + r'^2))", "sqrt(2*m*(h*r + m*mu)*(r^2 + rprime^2)/r)",
+         "LIB:kepler:phi:L_star"],
+        [("sqrt(2*h + 2*m*mu/r)*sqrt(r^2 + r'^2)", "power of m is too low by 1/2"),
+         ("-sqrt(2*h + 2*m*mu/r)*sqrt(m*(r^2 + r'^2))", "sign"),
+         ("(2*h + 2*m*mu/r)*sqrt(m*(r^2 + r'^2))", "power")]),
+    ("kepler-orbit", "r_pp"): (
+        ["(r^2*(2*h*r + m*mu) + r'^2*(4*h*r + 3*m*mu))/(2*r*(h*r + m*mu))",
+         "r*(2*h*r + m*mu)/(2*(h*r + m*mu)) + rprime^2*(4*h*r + 3*m*mu)/(2*r*(h*r + m*mu))",
+         "LIB:kepler:phi:acc"],
+        [("(r^2*(2*h*r + m*mu) + r'^2*(4*h*r + 3*m*mu))/(2*(h*r + m*mu))", "factor r"),
+         ("-(r^2*(2*h*r + m*mu) + r'^2*(4*h*r + 3*m*mu))/(2*r*(h*r + m*mu))", "sign"),
+         ("(r^2*(2*h*r + m*mu) + r'^2*(4*h*r + 3*m*mu))/(2*r*(h*r + m*mu)^2)", "power")]),
+    ("kepler-orbit", "h"): (
+        ["-m*mu*(1 - e^2)/(2*p)", "m*mu*e^2/(2*p) - m*mu/(2*p)"],
+        [("-mu*(1 - e^2)/(2*p)", "factor m"),
+         ("m*mu*(1 - e^2)/(2*p)", "sign"),
+         ("-m*mu*(1 - e^2)/(2*p^2)", "power of p")]),
+    ("omega-and-energy", "Omega"): (
+        ["thetadot^2*(A + m*R^2 + C*phi'^2)/2 - k^2*phi^2/2",
+         "A*thetadot**2/2 + m*R**2*thetadot**2*(sin(phi)**2 + cos(phi)**2)/2 "
+         "+ C*(thetadot*phiprime)**2/2 - k**2*phi**2/2", "LIB:rolling_disk:theta:Omega"],
+        [("thetadot^2*(A + m*R^2 + C*phi'^2) - k^2*phi^2/2", "terms of your answer are 2 times"),
+         ("thetadot^2*(A + m*R^2 + C*phi'^2)/2 + k^2*phi^2/2", "sign"),
+         ("thetadot^2*(A + m*R + C*phi'^2)/2 - k^2*phi^2/2", "R")]),
+    ("omega-and-energy", "energy"): (
+        ["thetadot^2*(A + m*R^2 + C*phi'^2)/2 + k^2*phi^2/2",
+         "(thetadot**2*(A + m*R**2 + C*phiprime**2) + k**2*phi**2)/2"],
+        [("thetadot^2*(A + m*R^2 + C*phi'^2)/2 + k^2*phi^2", "one term of your answer is 2 times"),
+         ("thetadot^2*(A + m*R^2 + C*phi'^2)/2 - k^2*phi^2/2", "sign"),
+         ("thetadot*(A + m*R^2 + C*phi'^2)/2 + k^2*phi^2/2", "power of thetadot")]),
+    ("omega-and-energy", "thetadot"): (
+        ["sqrt(2*h - k^2*phi^2)/sqrt(A + m*R^2 + C*phi'^2)",
+         "sqrt((2*h - k**2*phi**2)/(A + m*R**2 + C*phiprime**2))",
+         "LIB:rolling_disk:theta:velocity"],
+        [("sqrt(2*h - k^2*phi^2)/sqrt(A + C*phi'^2)", "not equal"),
+         ("-sqrt(2*h - k^2*phi^2)/sqrt(A + m*R^2 + C*phi'^2)", "sign"),
+         ("(2*h - k^2*phi^2)/sqrt(A + m*R^2 + C*phi'^2)", "power")]),
+    ("identity-1-19", "dxdot_dthetaprime"): (
+        ["-J*xdot*theta'/(m + J*theta'^2)", "xdot*J*thetaprime/(-m - J*thetaprime**2)"],
+        [("-J*theta'/(m + J*theta'^2)", "factor xdot"),
+         ("J*xdot*theta'/(m + J*theta'^2)", "sign"),
+         ("-J*xdot*theta'/(m + J*theta'^2)^2", "power")]),
+    ("identity-1-19", "dLstar_dthetaprime"): (
+        ["J*xdot*theta' + b*cos(theta)", "(xdot**2*J*thetaprime + b*xdot*cos(theta))/xdot"],
+        [("xdot*theta' + b*cos(theta)", "factor J"),
+         ("J*xdot*theta' - b*cos(theta)", "sign"),
+         ("J*xdot^2*theta' + b*cos(theta)", "xdot")]),
+    ("constraint-star", "omega"): (
+        ["xdot*tan(theta)", "xdot*sin(theta)/cos(theta)"],
+        [("tan(theta)", "factor xdot"), ("-xdot*tan(theta)", "sign"),
+         ("xdot*tan(theta)^2", "power")]),
+    ("constraint-star", "ydot_star"): (
+        ["tan(theta)", "sin(theta)/cos(theta)", "LIB:sledge:x:ydot_star"],
+        [("xdot*tan(theta)", "xdot"), ("-tan(theta)", "sign"), ("tan(theta)^2", "power")]),
+    ("constraint-star", "bracket"): (
+        ["-(1 + tan(theta)^2)", "-sec(theta)^2", "-1/cos(theta)**2"],
+        [("-(1 + tan(theta)^2)/2", "constant factor"), ("1 + tan(theta)^2", "sign"),
+         ("-(1 + tan(theta)^2)^2", "power")]),
+    ("constraint-star", "P_star"): (
+        ["m*tan(theta)*sqrt(2*h - k^2*theta^2)/sqrt(m*(1 + tan(theta)^2) + J*theta'^2)",
+         "m*sin(theta)*sqrt((2*h - k**2*theta**2)/(m + J*thetaprime**2*cos(theta)**2))"],
+        [("tan(theta)*sqrt(2*h - k^2*theta^2)/sqrt(m*(1 + tan(theta)^2) + J*theta'^2)", "factor m"),
+         ("-m*tan(theta)*sqrt(2*h - k^2*theta^2)/sqrt(m*(1 + tan(theta)^2) + J*theta'^2)", "sign"),
+         ("m*tan(theta)*(2*h - k^2*theta^2)/sqrt(m*(1 + tan(theta)^2) + J*theta'^2)", "power")]),
+    ("sledge-L-star", "Omega"): (
+        ["xdot^2*(m*(1 + tan(theta)^2) + J*theta'^2)/2 - k^2*theta^2/2",
+         "m*xdot**2/(2*cos(theta)**2) + J*(xdot*thetaprime)**2/2 - k**2*theta**2/2",
+         "LIB:sledge:x:Omega"],
+        [("xdot^2*(m*(1 + tan(theta)^2) + J*theta'^2) - k^2*theta^2/2", "are 2 times"),
+         ("xdot^2*(m*(1 + tan(theta)^2) + J*theta'^2)/2 + k^2*theta^2/2", "sign"),
+         ("xdot^2*(m*(1 + tan(theta)^2) + J*theta')/2 - k^2*theta^2/2", "factor thetaprime")]),
+    ("sledge-L-star", "xdot"): (
+        ["sqrt(2*h - k^2*theta^2)/sqrt(m*(1 + tan(theta)^2) + J*theta'^2)",
+         "cos(theta)*sqrt((2*h - k**2*theta**2)/(m + J*thetaprime**2*cos(theta)**2))",
+         "LIB:sledge:x:velocity"],
+        [("sqrt(2*h - k^2*theta^2)/sqrt(1 + tan(theta)^2 + J*theta'^2)", "not equal"),
+         ("-sqrt(2*h - k^2*theta^2)/sqrt(m*(1 + tan(theta)^2) + J*theta'^2)", "sign"),
+         ("sqrt(2*h - k^2*theta^2)/(m*(1 + tan(theta)^2) + J*theta'^2)", "power")]),
+    ("sledge-L-star", "L_star"): (
+        ["sqrt(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + J*theta'^2)",
+         "sqrt((2*h - k**2*theta**2)*(m + m*tan(theta)**2 + J*thetaprime**2))",
+         "LIB:sledge:x:L_star"],
+        [("sqrt(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + theta'^2)", "not equal"),
+         ("-sqrt(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + J*theta'^2)", "sign"),
+         ("(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + J*theta'^2)", "power")]),
+    ("sledge-reduced-equation", "theta_pp"): (
+        ["(J*theta'^2*((2*h - k^2*theta^2)*tan(theta) - k^2*theta)"
+         " - m*k^2*theta*(1 + tan(theta)^2))"
+         "/(J*(2*h - k^2*theta^2))",
+         "thetaprime**2*tan(theta) - k**2*theta*thetaprime**2/(2*h - k**2*theta**2)"
+         " - m*k**2*theta/(J*(2*h - k**2*theta**2)*cos(theta)**2)", "LIB:sledge:x:acc"],
+        [("(J*theta'^2*((2*h - k^2*theta^2)*tan(theta) - k^2*theta)"
+         " - m*k^2*theta*(1 + tan(theta)^2))"
+          "/(2*h - k^2*theta^2)", "extra factor J"),
+         ("-(J*theta'^2*((2*h - k^2*theta^2)*tan(theta) - k^2*theta)"
+          " - m*k^2*theta*(1 + tan(theta)^2))"
+          "/(J*(2*h - k^2*theta^2))", "sign"),
+         ("(J*theta'^2*((2*h - k^2*theta^2)*tan(theta) - k^2*theta) - m*k*theta*(1 + tan(theta)^2))"
+          "/(J*(2*h - k^2*theta^2))", "factor k is missing")]),
+    ("sledge-reduced-equation", "last_term"): (
+        ["m*k^2*theta*(1 + tan(theta)^2)", "m*k**2*theta/cos(theta)**2",
+         "m*k^2*theta*sec(theta)^2"],
+        [("k^2*theta*(1 + tan(theta)^2)", "factor m"),
+         ("-m*k^2*theta*(1 + tan(theta)^2)", "sign"),
+         ("m*k*theta*(1 + tan(theta)^2)", "paper prints"),
+         ("m*k^2*theta^2*(1 + tan(theta)^2)", "power")]),
+    ("nielsen-form", "total_derivative"): (
+        ["LIB:kepler:phi:total", "FN:kepler_total"],
+        [("FN:kepler_total_drop", "term"), ("FN:kepler_total_neg", "sign"),
+         ("FN:kepler_total_sq", "power")]),
+    ("nielsen-form", "nielsen"): (
+        ["LIB:kepler:phi:nielsen", "LIB:kepler:phi:whittaker"],
+        [("FN:kepler_nielsen_half", "constant factor"), ("FN:kepler_nielsen_neg", "sign"),
+         ("FN:kepler_nielsen_sq", "power")]),
+    ("chaplygin-sleigh", "L_star"): (
+        ["LIB:offset_sleigh:x:L_star",
+         "sqrt(2*h - k^2*theta^2)*sqrt(m/cos(theta)^2 + (J + m*b^2)*theta'^2)"],
+        [("sqrt(2*h - k^2*theta^2)*sqrt(m/cos(theta)^2 + J*theta'^2)", "not equal"),
+         ("-sqrt(2*h - k^2*theta^2)*sqrt(m/cos(theta)^2 + (J + m*b^2)*theta'^2)", "sign"),
+         ("sqrt(2*h - k^2*theta^2)*sqrt(m/cos(theta)^2 + (J + m*b)*theta'^2)", "not equal")]),
+    ("chaplygin-sleigh", "J_eff"): (
+        ["J + m*b^2", "(J*m + m**2*b**2)/m"],
+        [("J + b^2", "factor m"), ("J - m*b^2", "sign"), ("J + m*b", "power of b")]),
+    ("chaplygin-sleigh", "P_star"): (
+        ["m*(tan(theta) + b*theta'*cos(theta))*sqrt(2*h - k^2*theta^2)"
+         "/sqrt(m/cos(theta)^2 + (J + m*b^2)*theta'^2)",
+         "m*(sin(theta) + b*thetaprime*cos(theta)**2)*sqrt((2*h - k**2*theta**2)"
+         "/(m + (J + m*b**2)*thetaprime**2*cos(theta)**2))"],
+        [("(tan(theta) + b*theta'*cos(theta))*sqrt(2*h - k^2*theta^2)"
+          "/sqrt(m/cos(theta)^2 + (J + m*b^2)*theta'^2)", "factor m"),
+         ("m*(tan(theta) - b*theta'*cos(theta))*sqrt(2*h - k^2*theta^2)"
+          "/sqrt(m/cos(theta)^2 + (J + m*b^2)*theta'^2)", "sign"),
+         ("m*(tan(theta) + b*theta'*cos(theta))*(2*h - k^2*theta^2)"
+          "/sqrt(m/cos(theta)^2 + (J + m*b^2)*theta'^2)", "power")]),
+    ("chaplygin-sleigh", "odd_part"): (
+        ["-b*theta'*(m + (J + m*b^2)*theta'^2*cos(theta)^2)/((J + m*b^2)*cos(theta))",
+         "-b*thetaprime*m/((J + m*b**2)*cos(theta)) - b*thetaprime**3*cos(theta)"],
+        [("-b*theta'*(m + (J + m*b^2)*theta'^2*cos(theta)^2)/cos(theta)", "J + b**2*m"),
+         ("b*theta'*(m + (J + m*b^2)*theta'^2*cos(theta)^2)/((J + m*b^2)*cos(theta))", "sign"),
+         ("-b^2*theta'*(m + (J + m*b^2)*theta'^2*cos(theta)^2)/((J + m*b^2)*cos(theta))", "b")]),
+    ("turning-point", "xdot"): (
+        ["C*cos(theta)", "C/sec(theta)", "C*sqrt(1 - sin(theta)**2)"],
+        [("cos(theta)", "factor C"), ("-C*cos(theta)", "xdot > 0"),
+         ("C*cos(theta)^2", "power")]),
+    ("turning-point", "t_turn"): (
+        ["sqrt(J)/k*asin(pi/(2*a))", "asin(pi/2/a)/sqrt(k**2/J)"],
+        [("asin(pi/(2*a))/k", "power of J"), ("-sqrt(J)/k*asin(pi/(2*a))", "sign"),
+         ("sqrt(J)/k^2*asin(pi/(2*a))", "power of k")]),
+    ("turning-point", "numerics"): (
+        ["ChartError", "raises ChartError", "  chart-error "],
+        [("NaN", "run red.simulate"), ("continues", "run red.simulate"),
+         ("switches", "on_turning_point='switch'")]),
+    ("turning-point", "x_turn"): (
+        ["FLOAT:x_turn", 0.5372880, "0.53728798"],
+        [(0.52, "too small"), (-0.5372880, "sign"), (0.6, "too large")]),
+    ("work-precision", "nfev"): (
+        ["FLOAT:nfev", "FLOATSTR:nfev"],
+        [("FLOAT:nfev-1", "too small"), ("FLOAT:nfev*2", "too large"),
+         ("FLOAT:-nfev", "sign")]),
+    ("work-precision", "method"): (
+        ["DOP853", "dop853"],
+        [("RK45", "nfev"), ("rk45", "nfev"), ("Radau", "not one of the options")]),
+    ("work-precision", "why"): (
+        ["order", "higher order", "Order 8"],
+        [("implicit", "explicit"), ("symplectic", "symplectic"), ("tolerance", "same")]),
+}
+
+
+def _lib(spec):
+    """'LIB:system:coordinate:what': a result of the library's own reduction."""
+    _, name, coord, what = spec.split(":")
+    red = getattr(wt.examples, name)().reduce(coord, +1)
+    if what == "acc":
+        return list(red.accelerations().values())[0]
+    if what == "ydot_star":
+        return list(red.constraint_rates.values())[0]
+    if what == "total":      # d/dphi of L*(r(phi), r'(phi)): SymPy's own chain rule, (2.1)
+        return sp.diff(red.L_star, red.independent)
+    if what == "nielsen":
+        return red.nielsen_equations[0]
+    if what == "whittaker":  # (1.26): equal to (2.4)
+        return red.equations[0]
+    return getattr(red, what)
+
+
+def _fn(spec):
+    red = wt.examples.kepler().reduce("phi", +1)
+    total = sp.diff(red.L_star, red.independent)
+    r = red.coordinates[0]
+    nielsen = red.nielsen_equations[0]
+    return {"kepler_total": total,
+            "kepler_total_drop": total.subs(r.diff(red.independent, 2), 0),
+            "kepler_total_neg": -total, "kepler_total_sq": total**2,
+            "kepler_nielsen_half": nielsen / 2, "kepler_nielsen_neg": -nielsen,
+            "kepler_nielsen_sq": nielsen**2}[spec[3:]]
+
+
+def _number(spec):
+    """'FLOAT:x_turn', 'FLOAT:nfev-1', ...: the expected number of that part, mutated."""
+    kind, what = spec.split(":")
+    ex = "turning-point" if what.startswith("x_turn") else "work-precision"
+    value = EXERCISES[ex].parts["x_turn" if ex == "turning-point" else "nfev"].expected
+    value = int(value) if ex == "work-precision" else float(value)
+    out = {"x_turn": value, "nfev": value, "nfev-1": value - 1, "nfev*2": value * 2,
+           "-nfev": -value}[what]
+    return str(out) if kind == "FLOATSTR" else out
+
+
+def _answer(a):
+    if isinstance(a, str) and a.startswith("LIB:"):
+        return _lib(a)
+    if isinstance(a, str) and a.startswith("FN:"):
+        return _fn(a)
+    if isinstance(a, str) and a.startswith("FLOAT"):
+        return _number(a)
+    return a
+
+
+ALL_PARTS = [(ex, p) for ex in exercises() if ex in EXERCISES for p in parts(ex)]
+
+
+def test_every_part_has_cases():
+    assert sorted(CASES) == sorted(ALL_PARTS)
+    for key, (good, bad) in CASES.items():
+        assert len(good) >= 2, key
+        assert len(bad) >= 3, key
+
+
+@pytest.mark.parametrize("key", sorted(CASES), ids="/".join)
+def test_correct_forms_accepted(key):
+    ex, part = key
+    for answer in CASES[key][0]:
+        f = check(ex, _answer(answer), part=part)
+        assert f.ok, (answer, f.message)
+        assert f.status == "correct"
+
+
+@pytest.mark.parametrize("key", sorted(CASES), ids="/".join)
+def test_wrong_forms_rejected_with_a_hint(key):
+    ex, part = key
+    for answer, words in CASES[key][1]:
+        f = check(ex, _answer(answer), part=part)
+        assert not f.ok, answer
+        assert f.status == ("invalid" if "not one of" in words else "wrong")
+        assert words.lower() in f.message.lower(), (answer, f.message)
+
+
+@pytest.mark.parametrize("key", sorted(CASES), ids="/".join)
+def test_mutations_of_the_expected_answer(key):
+    """Flipped sign, squared, doubled, and with an extra factor of a symbol it contains."""
+    ex, part = key
+    e = EXERCISES[ex].parts[part].expected
+    if e is None:                      # a choice: every other option is wrong
+        p = EXERCISES[ex].parts[part]
+        others = [k for k in p.choices if k != p.answer_key]
+        assert others and all(not check(ex, k, part=part).ok for k in others)
+        return
+    if not e.free_symbols:             # a number
+        for mutated, words in ((-e, "sign"), (2 * e, "too large"), (e / 2, "too small")):
+            f = check(ex, mutated, part=part)
+            assert not f.ok and words in f.message, (mutated, f.message)
+        return
+    s = sorted(e.free_symbols, key=str)[0]
+    for mutated, words in ((-e, "sign"), (e**2, "power 2"), (2 * e, "2 times"),
+                           (e * s, f"extra factor {s}")):
+        f = check(ex, mutated, part=part)
+        assert not f.ok
+        assert words in f.message, (mutated, f.message)
+
+
+BAD = [None, "", "   ", "x +* 2", "2x", 42, 3.5, [1, 2], (1,), {"a": 1}, {1, 2},
+       sp.Eq(sp.Symbol("x"), 1), sp.Symbol("x") < 1, sp.Matrix([1, 2]), sp.Symbol("zzz"),
+       "zzz*q", "f(x, y)", object(), True, b"bytes", lambda: 1, print,
+       "__import__('os').system('echo hacked')", "x.__class__", "(1).real", "lambda: 1",
+       "9**9**9", "10**1000", "1/0", sp.nan, float("nan"), float("inf"), "xdot = 3",
+       "[1, 2]", "exec('1')", "a; b", "Derivative(sin(x), y, 7)"]
+
+
+@pytest.mark.parametrize("key", sorted(CASES), ids="/".join)
+def test_bad_input_never_raises(key):
+    ex, part = key
+    for answer in BAD:
+        f = check(ex, answer, part=part)
+        assert isinstance(f, Feedback)
+        assert not f.ok, answer
+        assert f.message and f.status in ("invalid", "unanswered", "wrong"), (answer, f)
+        if answer is None:
+            assert f.status == "unanswered" and "not answered yet" in f.message
+        elif f.status == "invalid":
+            assert "expected" in f.message, (answer, f.message)
+
+
+def test_bad_exercise_or_part():
+    for args in [("no-such-exercise", 1), (3, 1), (None, None), ("sledge-L-star", 1),
+                 ("sledge-L-star", 1, "nope"), ("sledge-L-star", 1, 7), ("sledge-L-star", 1, [])]:
+        f = check(*args)
+        assert isinstance(f, Feedback) and not f.ok and f.status == "invalid" and f.message
+    f = check("sledge-L-star", "1")
+    assert "several parts" in f.message and "L_star" in f.message
+
+
+def test_wrong_symbols_and_forbidden_dependence():
+    f = check("sledge-L-star", "sqrt(2*h - k^2*theta^2)*sqrt(m + J*zeta^2)", part="L_star")
+    assert f.status == "invalid" and "zeta" in f.message
+    f = check("sledge-L-star", "sqrt(2*h - k^2*theta^2)*sqrt(m + J*thetadot^2)", part="L_star")
+    assert not f.ok and "thetadot" in f.message and "should not" in f.message
+    f = check("projectile-path", "x*tan(alpha) - g*x^2/(4*h/m*cos(alpha)^2)", part="path")
+    assert not f.ok and "h" in f.message and "should not" in f.message
+    f = check("kepler-orbit", 3, part="h")
+    assert not f.ok and "number" in f.message
+
+
+def test_direction_of_travel_is_named_when_the_sign_is_wrong():
+    f = check("sledge-L-star", "-sqrt(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + J*theta'^2)",
+              part="L_star")
+    assert "xdot > 0" in f.message
+
+
+def test_known_misprints_are_named():
+    f = check("sledge-reduced-equation", "m*k*theta*(1 + tan(theta)^2)", part="last_term")
+    assert not f.ok and "prints" in f.message
+    f = check("sledge-L-star", "sqrt(2*h - k^2*theta^2)/sqrt(m*(1 + tan(theta)^2) + "
+              "J*thetadot^2)", part="xdot")
+    assert not f.ok and "thetadot" in f.message
+
+
+def test_notations_are_equivalent():
+    """theta(x) and Derivative(theta(x), x), theta', thetap, theta_p, Greek letters."""
+    forms = ["sqrt(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + J*thetap^2)",
+             "sqrt(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + J*theta_p^2)",
+             "sqrt(2*h - k^2*θ^2)*sqrt(m*sec(θ)^2 + J*θ'^2)",
+             "sqrt(2*h - k^2*theta(x)^2)*sqrt(m*sec(theta(x))^2 + J*Derivative(theta(x), x)^2)",
+             "sqrt(2*h - k^2*theta(x)^2)*sqrt(m*sec(theta(x))^2 + J*diff(theta(x), x)^2)"]
+    for a in forms:
+        assert check("sledge-L-star", a, part="L_star").ok, a
+
+
+def test_floats_are_accepted_when_close():
+    f = check("kepler-orbit", "-0.5*m*mu*(1 - e**2)/p", part="h")
+    assert f.ok
+    f = check("kepler-orbit", "-0.5001*m*mu*(1 - e**2)/p", part="h")
+    assert not f.ok
+
+
+def test_safe_parsing():
+    for text in ["__import__('os')", "x.__class__", "().__class__", "open('f')",
+                 "lambda: 1", "a; b", "[x]", "{x}", "x if y else z"]:
+        with pytest.raises(AnswerError):
+            read_answer(text)
+    assert read_answer("theta'' + 2*x^2") == sp.Symbol("thetaprimeprime") + 2 * sp.Symbol("x")**2
+
+
+def test_feedback_displays():
+    ok = check("constraint-star", "tan(theta)", part="ydot_star")
+    bad = check("constraint-star", "-tan(theta)", part="ydot_star")
+    none = check("constraint-star", None, part="ydot_star")
+    for f in (ok, bad, none):
+        assert str(f) in repr(f)
+        assert "wt-feedback" in f._repr_html_()
+        assert f._repr_markdown_()
+        assert "0x" not in f._repr_html_()
+    assert bool(ok) and not bool(bad)
+    assert "Correct" in ok._repr_html_() and "not answered yet" in str(none)
+    assert "&lt;" not in ok._repr_html_() or "<" not in ok.message
+
+
+def test_expected_answers_solve_the_library_equations():
+    """The closed forms typed in the catalogue satisfy the library's own equations."""
+    ex = EXERCISES["projectile-path"]
+    names, _, ps = ex.build()
+    x, y, yp, h, m, v0, alpha = (names[n] for n in "x y yprime h m v0 alpha".split())
+    path = ps["path"].expected
+    on = {y: path, yp: path.diff(x), h: m * v0**2 / 2}
+    assert sp.simplify(path.diff(x, 2) - ps["y_pp"].expected.subs(on)) == 0
+    assert path.subs(x, 0) == 0 and sp.simplify(path.diff(x).subs(x, 0) - sp.tan(alpha)) == 0
+    ex = EXERCISES["kepler-orbit"]
+    names, _, ps = ex.build()
+    r, rp, phi, h, p, e = (names[n] for n in "r rprime phi h p e".split())
+    conic = p / (1 + e * sp.cos(phi))
+    on = {r: conic, rp: conic.diff(phi), h: ps["h"].expected}
+    assert sp.simplify(conic.diff(phi, 2) - ps["r_pp"].expected.subs(on)) == 0
+    ex = EXERCISES["sledge-reduced-equation"]
+    names, _, ps = ex.build()
+    th, m, k = (names[n] for n in "theta m k".split())
+    assert sp.simplify(ps["last_term"].expected - m * k**2 * th * (1 + sp.tan(th)**2)) == 0
+    ex = EXERCISES["chaplygin-sleigh"]
+    names, _, ps = ex.build()
+    assert ps["J_eff"].expected == names["J"] + names["m"] * names["b"]**2
+
+
+def test_importing_the_package_stays_light():
+    code = ("import sys, whittaker_teach, whittaker_teach.exercises as e; "
+            "print('sympy' in sys.modules, callable(e.check))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.split()
+    assert out == ["False", "True"]

@@ -1,0 +1,83 @@
+"""Automatic feedback for the exercises of the course.
+
+>>> from whittaker_teach.exercises import check
+>>> check("sledge-L-star", None, part="L_star").message[:16]
+'not answered yet'
+>>> check("sledge-L-star", "sqrt(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + J*theta'^2)",
+...       part="L_star").ok
+True
+>>> f = check("sledge-L-star", "-sqrt(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + J*theta'^2)",
+...           part="L_star")
+>>> f.ok, f.message[:58]
+(False, 'The sign is wrong (your answer is -1 times the right one):')
+
+``check(exercise_id, answer, part=None)`` returns a
+:class:`~whittaker_teach.exercises.feedback.Feedback` (``.ok``,
+``.message``; it displays as a coloured box in a notebook).  It accepts any
+form of the right answer (a SymPy expression, the library's own result such
+as ``red.L_star``, or a string such as ``"sqrt(2*h)*..."``; ``theta(x)`` or
+``theta``, ``Derivative(theta(x), x)`` or ``thetaprime`` or ``theta'``), and
+never raises: a wrong answer gets a hint that names the kind of difference
+(a wrong sign, a missing factor, a wrong power, a symbol it should not
+contain), an unreadable one a message saying what was expected.
+
+The expected answers are derived from the library on the first check of
+each exercise (about a second), not on import.
+"""
+
+from __future__ import annotations
+
+from .feedback import Feedback
+
+__all__ = ["check", "exercises", "parts", "Feedback"]
+
+
+def _catalog():
+    from .catalog import EXERCISES
+    return EXERCISES
+
+
+def exercises():
+    """The ids of the exercises that have automatic checks."""
+    return list(_catalog())
+
+
+def parts(exercise_id):
+    """{part name: what it asks} for one exercise."""
+    ex = _catalog()[exercise_id]
+    return {name: p.what for name, p in ex.parts.items()}
+
+
+def check(exercise_id, answer, part=None):
+    """Check ``answer`` to ``part`` of exercise ``exercise_id``: a :class:`Feedback`.
+
+    ``part`` may be omitted when the exercise has a single part.  Never
+    raises; ``None`` (the placeholder of the student notebooks) gives "not
+    answered yet".
+    """
+    try:
+        return _check(exercise_id, answer, part)
+    except Exception as exc:  # noqa: BLE001 - a checker must answer, whatever it is given
+        return Feedback(False, f"The checker could not check this answer ({type(exc).__name__}: "
+                        f"{str(exc)[:200]}); please report it", str(exercise_id)[:40],
+                        part if isinstance(part, str) else None, "invalid")
+
+
+def _check(exercise_id, answer, part):
+    from .specs import check_part
+    cat = _catalog()
+    if not isinstance(exercise_id, str) or exercise_id not in cat:
+        return Feedback(False, f"There is no exercise {str(exercise_id)[:40]!r}; the exercises "
+                        f"are {', '.join(cat)}", "", None, "invalid")
+    ex = cat[exercise_id]
+    names = list(ex.parts)
+    if part is None:
+        if len(names) != 1:
+            return Feedback(False, f"This exercise has several parts ({', '.join(names)}): "
+                            "say which one, e.g. check(..., part='" + names[0] + "')",
+                            exercise_id, None, "invalid")
+        part = names[0]
+    if not isinstance(part, str) or part not in ex.parts:
+        return Feedback(False, f"There is no part {str(part)[:40]!r} in {exercise_id}; its parts "
+                        f"are {', '.join(names)}", exercise_id, None, "invalid")
+    return check_part(ex, ex.parts[part], answer)

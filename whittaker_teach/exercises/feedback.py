@@ -1,0 +1,85 @@
+"""The answer to a check: :class:`Feedback`, with ``.ok`` and ``.message``.
+
+It shows as a short coloured box in a notebook (``_repr_html_``), as
+Markdown where HTML is not wanted (``_repr_markdown_``) and as one line of
+text elsewhere.  Nothing here imports SymPy.
+
+>>> f = Feedback(True, "L* is right.", "sledge-L-star", "L_star")
+>>> f.ok, str(f)
+(True, '[sledge-L-star, L_star] Correct. L* is right.')
+>>> print(Feedback(False, "not answered yet: replace None by your answer", "kepler-orbit", "h",
+...                status="unanswered"))
+[kepler-orbit, h] not answered yet: replace None by your answer
+"""
+
+from __future__ import annotations
+
+import html
+from dataclasses import dataclass
+
+__all__ = ["Feedback"]
+
+_STYLE = {
+    # status: (label, border colour, background colour)
+    "correct": ("Correct", "#2e7d32", "#e8f5e9"),
+    "wrong": ("Not yet right", "#c62828", "#ffebee"),
+    "unanswered": ("Not answered yet", "#616161", "#f5f5f5"),
+    "invalid": ("Cannot check this answer", "#ef6c00", "#fff3e0"),
+}
+
+
+@dataclass(frozen=True)
+class Feedback:
+    """The result of :func:`whittaker_teach.exercises.check`.
+
+    ``ok`` is True only for a correct answer; ``message`` says why, or what
+    kind of difference the checker sees.  ``status`` is one of
+    ``"correct"``, ``"wrong"``, ``"unanswered"`` (the answer is still None)
+    and ``"invalid"`` (not something the checker can read).
+    """
+
+    ok: bool
+    message: str
+    exercise: str = ""
+    part: str | None = None
+    status: str = ""
+
+    def __post_init__(self):
+        if not self.status:
+            object.__setattr__(self, "status", "correct" if self.ok else "wrong")
+
+    def __bool__(self):
+        return bool(self.ok)
+
+    @property
+    def _where(self):
+        bits = [b for b in (self.exercise, self.part) if b]
+        return f"[{', '.join(bits)}] " if bits else ""
+
+    def __str__(self):
+        if self.status == "unanswered":
+            return f"{self._where}{self.message}"
+        return f"{self._where}{_STYLE[self.status][0]}. {self.message}"
+
+    def __repr__(self):
+        return f"Feedback(ok={self.ok}, {str(self)!r})"
+
+    def _repr_html_(self):
+        label, border, background = _STYLE[self.status]
+        where = html.escape(self._where.strip())
+        msg = html.escape(self.message)
+        if self.status == "unanswered":
+            text = msg
+        else:
+            text = f"<strong>{label}.</strong> {msg}"
+        return (f'<div class="wt-feedback wt-feedback-{self.status}" style="border-left: 4px '
+                f'solid {border}; background: {background}; padding: 0.4em 0.8em; '
+                f'margin: 0.2em 0; color: #212121;"><span style="color: {border};">{where}</span> '
+                f"{text}</div>")
+
+    def _repr_markdown_(self):
+        label = _STYLE[self.status][0]
+        msg = self.message.replace("*", r"\*").replace("_", r"\_")
+        if self.status == "unanswered":
+            return f"{self._where}{msg}"
+        return f"{self._where}**{label}.** {msg}"

@@ -1,0 +1,223 @@
+"""What an exercise asks: :class:`Exercise` and :class:`Part`, and the checking of one part.
+
+An exercise has an id, a title, the paper's equations it involves, and a
+builder that derives its parts (the expected answers, from the library
+where the library computes them).  The builder runs on the first check of
+that exercise only, and its result is kept.
+
+A :class:`Part` is either an expression (``expected``, compared with
+:func:`~whittaker_teach.exercises.compare.compare` on the exercise's
+:class:`~whittaker_teach.exercises.compare.Domain`) or a choice among named
+options (``choices``).
+"""
+
+from __future__ import annotations
+
+import random
+import zlib
+from dataclasses import dataclass, field
+
+import sympy as sp
+
+from .compare import _Fn, compare, depends_on
+from .feedback import Feedback
+from .parsing import _GREEK, AnswerError, plain_symbols, read_answer
+
+__all__ = ["Exercise", "Part", "Names", "check_part"]
+
+
+class Names:
+    """The symbols of an exercise, by name, with the aliases a student may use.
+
+    ``thetaprime`` is also ``thetap``, ``theta_p``, ``theta_prime``;
+    ``thetaprimeprime`` is ``thetapp``, ``theta_pp``; ``xdot`` is ``x_dot``;
+    Greek letters may be written as such (``θ``).
+    """
+
+    def __init__(self, symbols):
+        self.symbols = {s.name: s for s in symbols}
+        self.alias = {}
+        for name, s in self.symbols.items():
+            self.alias[name] = s
+            for suffix, alts in (("primeprime", ("pp", "_pp", "_primeprime", "''")),
+                                 ("prime", ("p", "_p", "_prime", "'")),
+                                 ("ddot", ("_ddot", "dd")), ("dot", ("_dot", "d"))):
+                if name.endswith(suffix) and len(name) > len(suffix):
+                    base = name[:-len(suffix)]
+                    for a in alts:
+                        self.alias.setdefault(base + a, s)
+                    break
+        for g, latin in _GREEK.items():
+            for name, s in list(self.alias.items()):
+                if name.startswith(latin):
+                    self.alias.setdefault(g + name[len(latin):], s)
+
+    def __getitem__(self, name):
+        return self.symbols[name]
+
+    def resolve(self, expr, listing):
+        """Map every free symbol of expr (by name) to the exercise's symbol."""
+        sub = {}
+        for s in expr.free_symbols:
+            canon = self.alias.get(s.name)
+            if canon is None:
+                raise AnswerError(f"your answer uses the symbol {s.name}, which is not a symbol "
+                                  f"of this exercise; {listing}")
+            if canon is not s:
+                sub[s] = canon
+        return expr.xreplace(sub) if sub else expr
+
+
+@dataclass
+class Part:
+    """One question of an exercise.
+
+    name: the ``part=`` argument; what: what is asked (shown in messages);
+    expected: the right answer (an expression in the exercise's symbols);
+    variables: the symbols the answer may depend on; why_not: {symbol name:
+    why the answer should not contain it}; sign_note: said when the sign is
+    wrong; wrong: [(expression, message)] for known wrong answers (the
+    paper's misprints); success: said when the answer is right.  For a
+    choice: choices = {key: (aliases, message)} and answer_key.
+    """
+
+    name: str
+    what: str
+    expected: sp.Expr | None = None
+    variables: tuple = ()
+    why_not: dict = field(default_factory=dict)
+    sign_note: str = ""
+    wrong: list = field(default_factory=list)
+    success: str = ""
+    choices: dict = field(default_factory=dict)
+    answer_key: str = ""
+    rtol: float | None = None
+
+    @property
+    def is_choice(self):
+        return bool(self.choices)
+
+    def listing(self):
+        if self.is_choice:
+            return "expected one of " + ", ".join(repr(k) for k in self.choices)
+        if not self.variables:
+            return f"expected {self.what}, a number"
+        names = ", ".join(str(v) for v in self.variables)
+        return f"expected {self.what}, an expression in {names}"
+
+
+@dataclass
+class Exercise:
+    """An exercise: id, title, equations of the paper, and a builder of its parts."""
+
+    id: str
+    title: str
+    equations: str
+    builder: object
+    _built: tuple | None = None
+
+    def build(self):
+        """(names, domain, {part name: Part}), derived once."""
+        if self._built is None:
+            names, domain, parts = self.builder()
+            self._built = (names, domain, {p.name: p for p in parts})
+        return self._built
+
+    @property
+    def parts(self):
+        return self.build()[2]
+
+
+def _article(word):
+    return ("an " if word[:1].lower() in "aeiou" else "a ") + word
+
+
+def _sentence(text):
+    return text[:1].upper() + text[1:]
+
+
+def _norm_choice(text):
+    return "".join(c for c in text.lower() if c.isalnum())
+
+
+def _check_choice(ex, part, answer):
+    if not isinstance(answer, str):
+        return Feedback(False, f"The answer is {_article(type(answer).__name__)}; "
+                        f"{part.listing()} (a string)", ex.id, part.name, "invalid")
+    key = _norm_choice(answer)
+    for name, (aliases, message) in part.choices.items():
+        if key in {_norm_choice(a) for a in (name, *aliases)}:
+            if name == part.answer_key:
+                return Feedback(True, message or part.success, ex.id, part.name)
+            return Feedback(False, message, ex.id, part.name)
+    return Feedback(False, f"{answer[:40]!r} is not one of the options: {part.listing()} "
+                    "(a string)", ex.id, part.name, "invalid")
+
+
+def check_part(ex, part, answer):
+    """Check one answer against one part: a :class:`Feedback`."""
+    names, domain, _ = ex.build()
+    if answer is None or answer is Ellipsis:
+        what = part.listing() if part.is_choice else f"expected {part.what}"
+        return Feedback(False, f"not answered yet: replace None by your answer ({what})",
+                        ex.id, part.name, "unanswered")
+    if part.is_choice:
+        return _check_choice(ex, part, answer)
+    try:
+        expr = names.resolve(read_answer(answer), part.listing())
+    except AnswerError as exc:
+        return Feedback(False, _sentence(f"{exc}; {part.listing()}"), ex.id, part.name,
+                        "invalid")
+    if not expr.free_symbols and part.expected.free_symbols:
+        return Feedback(False, f"Your answer is the number {sp.sstr(expr)[:40]}, but the right "
+                        "answer depends on "
+                        f"{', '.join(sorted(str(s) for s in part.expected.free_symbols))}",
+                        ex.id, part.name)
+    seed = zlib.crc32(f"{ex.id}:{part.name}".encode())
+    extra = sorted((s for s in expr.free_symbols if s not in part.variables), key=str)
+    if extra:
+        pts = domain.sample(random.Random(seed), 4)
+        fn = _Fn(expr, domain.symbols)
+        bad = [s for s in extra if depends_on(fn, s, pts[0], pts, domain)]
+        if bad:
+            why = "; ".join(part.why_not[s.name] for s in bad if s.name in part.why_not)
+            return Feedback(False, f"Your answer depends on {', '.join(map(str, bad))}, which it "
+                            f"should not" + (f" ({why})" if why else "") + f": {part.listing()}",
+                            ex.id, part.name)
+        expr = expr.xreplace({s: pts[0][s] for s in extra})
+    if not part.expected.free_symbols and not expr.free_symbols:
+        return _check_number(ex, part, expr)
+    verdict = compare(expr, part.expected, domain, seed, part.sign_note, part.rtol)
+    if verdict.ok:
+        return Feedback(True, part.success or f"{part.what} is right.", ex.id, part.name)
+    for wrong, message in part.wrong:
+        if compare(expr, wrong, domain, seed).ok:
+            return Feedback(False, message, ex.id, part.name)
+    return Feedback(False, _sentence(verdict.hint) + ".", ex.id, part.name)
+
+
+def _check_number(ex, part, expr):
+    """A number against a number: equal within part.rtol (default 1e-10), or by how much not."""
+    try:
+        got = complex(sp.N(expr, 30))
+        want = complex(sp.N(part.expected, 30))
+    except (TypeError, ValueError):
+        return Feedback(False, f"Cannot evaluate {sp.sstr(expr)[:40]} as a number; "
+                        f"{part.listing()}", ex.id, part.name, "invalid")
+    rtol = 1e-10 if part.rtol is None else part.rtol
+    if abs(got - want) <= rtol * max(1.0, abs(want)):
+        return Feedback(True, part.success or f"{part.what} is right.", ex.id, part.name)
+    if abs(got.imag) > 1e-12 * max(1.0, abs(got)):
+        return Feedback(False, "Your answer is a complex number; the right one is real.",
+                        ex.id, part.name)
+    if want.real and abs(got.real + want.real) <= rtol * abs(want.real):
+        return Feedback(False, "The sign is wrong.", ex.id, part.name)
+    rel = (got.real - want.real) / want.real if want.real else float("inf")
+    side = "too large" if rel > 0 else "too small"
+    return Feedback(False, f"Your number is {side} by {abs(rel):.2%} of the right value "
+                    f"(the tolerance is {rtol:g}, relative).", ex.id, part.name)
+
+
+def plain(expr, names):
+    """A library expression in the exercise's symbols (theta(x) -> theta, ...)."""
+    return names.resolve(plain_symbols(sp.sympify(expr)), "")
