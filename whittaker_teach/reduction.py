@@ -301,6 +301,15 @@ class Reduction:
         ne = _name(eps)
         def d(f, z):
             return partial(*{"Omega": ("Ω", r"\Omega"), "L^*": ("L*", "L^{*}")}[f], z)
+
+        def OM(z, w=None):
+            return partial("Ω", r"\Omega", z, w)
+
+        def LS(z):
+            return partial("L*", "L^{*}", z)
+
+        def XD(z):
+            return partial(sp.pretty(v), sp.latex(v), z)
         st = []
         st.append(Step("1.5", f"change of variable: {ne} replaces t, q' = dq/d{ne}",
                        [eq(S.qd[c], v * qp[c]) for c in nus]))
@@ -333,7 +342,9 @@ class Reduction:
         Ovv = Omv.diff(v)
         for lab, vars_, what in (("1.14", [qp[c] for c in nus], "q'_nu"),
                                  ("1.15", [qs[c] for c in sig], "q_sigma")):
-            st.append(Step(lab, f"(1.13) differentiated with respect to {what}", [],
+            st.append(Step(lab, f"(1.13) differentiated with respect to {what}",
+                           lambda vars_=vars_: [eq(v * OM(v, v) * XD(z) + v * OM(v, z) - OM(z), 0)
+                                                for z in vars_],
                            check_zero(lab, f"qdot_eps Omega_vv dqdot_eps/d{what} + qdot_eps "
                                       f"Omega_v,{what} - dOmega/d{what} = 0 at (1.12)",
                                       [self._star(v * Ovv * vs.diff(z) + v * Omv.diff(z)
@@ -344,7 +355,9 @@ class Reduction:
             self._star(Omv), smp)))
         for lab, vars_, what in (("1.17", [qp[c] for c in nus], "q'_nu"),
                                  ("1.18", [qs[c] for c in sig], "q_sigma")):
-            st.append(Step(lab, f"dL*/d{what} by the chain rule", [], check_identity(
+            st.append(Step(lab, f"dL*/d{what} by the chain rule",
+                           lambda vars_=vars_: [eq(LS(z), OM(v, v) * XD(z) + OM(v, z))
+                                                for z in vars_], check_identity(
                 lab, f"dL*/d{what} = Omega_vv dqdot_eps/d{what} + Omega_v,{what}",
                 [Ls.diff(z) for z in vars_],
                 [self._star(Ovv * vs.diff(z) + Omv.diff(z)) for z in vars_], smp)))
@@ -356,7 +369,9 @@ class Reduction:
                        [eq(d("L^*", qs[c]), Ls.diff(qs[c])) for c in sig], check_identity(
             "1.20", "dL*/dq_sigma = (1/qdot_eps) dOmega/dq_sigma (the OCR prints 1/qdot_sigma)",
             [Ls.diff(qs[c]) for c in sig], [self._star(Om.diff(qs[c]) / v) for c in sig], smp)))
-        st.append(Step("1.21", "with (1.8) and (1.9)", [], check_identity(
+        st.append(Step("1.21", "with (1.8) and (1.9)", lambda: [
+            eq(LS(qp[c]), partial("L̃", r"\tilde{L}", S.qd[c])) for c in nus] + [
+            eq(LS(qs[c]), partial("L̃", r"\tilde{L}", qs[c]) / v) for c in sig], check_identity(
             "1.21", "dL*/dq'_nu = dL~/dqdot_nu and dL*/dq_sigma = (1/qdot_eps) dL~/dq_sigma",
             [Ls.diff(qp[c]) for c in nus] + [Ls.diff(qs[c]) for c in sig],
             [self._star(self._sub15(Lt.diff(S.qd[c]))) for c in nus]
@@ -380,7 +395,8 @@ class Reduction:
                    [eq(s_, q) for s_, q in zip(star, self._qdstar)], check_zero(
                        "1.23", "qdot* is free of qdot_eps", [q.diff(v) for q in self._qdstar],
                        smp)),
-              Step("1.24", "(1.10) in the new variables", [], check_zero(
+              Step("1.24", "(1.10) in the new variables", lambda: [
+                  eq(v * partial(sp.pretty(o), sp.latex(o), v) - o, 0) for o in om], check_zero(
                   "1.24", "qdot_eps d omega/d qdot_eps - omega = 0",
                   [v * w.diff(v) - w for w in self._omega], smp))]
         phis = list(S._phi.values())
@@ -388,7 +404,16 @@ class Reduction:
         lhs += [q.diff(qs[c]) for q in self._qdstar for c in sig]
         rhs = [self._sub15(p.diff(S.qd[c])) for p in phis for c in nus]
         rhs += [self._sub15(p.diff(qs[c])) / v for p in phis for c in sig]
-        st.append(Step("1.25", "derivatives of qdot*", [], check_identity(
+        def shown():
+            out = []
+            for c_dep, s_ in zip(deps, star):
+                qd_t, qd_l = sp.pretty(S.qd[c_dep]), sp.latex(S.qd[c_dep])
+                out += [eq(partial(s_.name, sp.latex(s_), qp[c]), partial(qd_t, qd_l, S.qd[c]))
+                        for c in nus]
+                out += [eq(partial(s_.name, sp.latex(s_), qs[c]), partial(qd_t, qd_l, qs[c]) / v)
+                        for c in sig]
+            return out
+        st.append(Step("1.25", "derivatives of qdot*", shown, check_identity(
             "1.25", "dqdot*/dq'_nu = dqdot_dep/dqdot_nu and dqdot*/dq_sigma = "
             "(1/qdot_eps) dqdot_dep/dq_sigma", lhs, rhs, smp)))
         return st

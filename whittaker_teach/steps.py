@@ -174,10 +174,17 @@ def notation(text, tex):
     return Notation(text)
 
 
-def partial(f, f_tex, z):
-    """The notation d f / d z (a partial derivative) for the left side of a step."""
-    zt = sp.pretty(z, use_unicode=True)
-    return notation(f"∂{f}/∂{zt}", rf"\frac{{\partial {f_tex}}}{{\partial {sp.latex(z)}}}")
+def partial(f, f_tex, z, w=None):
+    """The notation d f / d z (or d^2 f / dz dw, or d^2 f / dz^2 with w = z), to show a
+    step in the paper's form for the coordinates at hand."""
+    zt, zl = sp.pretty(z, use_unicode=True), sp.latex(z)
+    if w is None:
+        return notation(f"∂{f}/∂{zt}", rf"\frac{{\partial {f_tex}}}{{\partial {zl}}}")
+    if w == z:
+        return notation(f"∂²{f}/∂{zt}²", rf"\frac{{\partial^2 {f_tex}}}{{\partial {zl}^2}}")
+    wt, wl = sp.pretty(w, use_unicode=True), sp.latex(w)
+    return notation(f"∂²{f}/∂{zt}∂{wt}",
+                    rf"\frac{{\partial^2 {f_tex}}}{{\partial {zl}\,\partial {wl}}}")
 
 
 def eq(lhs, rhs):

@@ -368,15 +368,26 @@ class ChaplyginSystem:
     def _steps(self):
         """The time-domain steps (1.1)-(1.4), (1.10), (1.11) for this system."""
         steps = []
+        dep_q = [self.q[c] for c in self.dependent_coordinates]
         if self.is_holonomic:
             steps.append(Step("1.1", "constraints: none (g = 0, a holonomic system)", []))
         else:
-            steps.append(Step("1.1", "the dependent velocities (Chaplygin type, 1.3: free of the "
-                              "dependent coordinates and of t)",
-                              [eq(sp.Symbol(_name(c) + "dot"), phi)
-                               for c, phi in zip(self.dependent_coordinates, self._phi.values())]))
+            steps.append(Step("1.1", "the dependent velocities, solved for (Chetaev-type ideal "
+                              "constraints)",
+                              [eq(self.qd[c], phi) for c, phi in
+                               zip(self.dependent_coordinates, self._phi.values())]))
         steps.append(Step("1.2", "L~: the Lagrangian with the constraints substituted",
-                          [eq(sp.Symbol("Ltilde"), self._Ltilde)]))
+                          [eq(sp.Symbol("Ltilde"), self._Ltilde)], dep_q and check_zero(
+            "1.2", "the terms of (1.2) in dphi/dq_dep and dL~/dq_dep vanish (Chaplygin type)",
+            [phi.diff(s) for phi in self._phi.values() for s in dep_q]
+            + [self._Ltilde.diff(s) for s in dep_q], self._sample_time) or None))
+        if not self.is_holonomic:
+            free = ", ".join(_name(c) for c in self.independent_coordinates)
+            steps.append(Step("1.3", f"Chaplygin type: each constraint depends on {free} and "
+                              "their velocities only (checked when the model was built)",
+                              [eq(self.qd[c], sp.Function("phi_" + _name(c))(
+                                  *[self.q[i] for i in self._sig], *[self.qd[i] for i in self._sig]))
+                               for c in self.dependent_coordinates]))
         chk = check_zero("1.4", "the solved accelerations satisfy (1.4)",
                          [e.xreplace(self._accelerations()) for e in self._eom()],
                          self._sample_time, seed=4)
