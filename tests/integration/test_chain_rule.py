@@ -22,9 +22,9 @@ from sympy.physics.mechanics import dynamicsymbols
 
 import whittaker_teach as wt
 
+from .numbers import DPS, TOL, close, num, rat  # noqa: F401
+
 t = dynamicsymbols._t
-DPS = 30
-TOL = mpmath.mpf("1e-20")
 N_POINTS = 3
 
 # (example, q_eps) for every built-in system: first the reduction the book uses,
@@ -48,22 +48,6 @@ OTHER_EPS = {
     "charged_particle": "y",
 }
 CASES = list(DEFAULT_EPS.items()) + list(OTHER_EPS.items())
-
-
-def rat(rng, lo, hi):
-    return sp.Rational(round(rng.uniform(lo, hi) * 10**6), 10**6)
-
-
-def num(expr, subs):
-    val = sp.sympify(expr).xreplace(subs).evalf(DPS + 10)
-    assert not val.free_symbols, f"unsubstituted symbols {val.free_symbols} in {expr}"
-    re, im = val.as_real_imag()
-    assert abs(im) < 1e-30, f"complex value {val}"
-    return mpmath.mpf(sp.Float(re, DPS + 10)._mpf_)
-
-
-def close(a, b, tol=TOL):
-    return abs(a - b) <= tol * max(1, abs(a), abs(b))
 
 
 _SYSTEMS, _REDUCTIONS = {}, {}

@@ -29,28 +29,10 @@ from sympy.physics.mechanics import LagrangesMethod, dynamicsymbols
 
 import whittaker_teach as wt
 
+from .numbers import DPS, TOL, close, num, rat  # noqa: F401
+
 t = dynamicsymbols._t
-DPS = 30
-TOL = mpmath.mpf("1e-20")
 N_POINTS = 4
-
-
-def rat(rng, lo, hi):
-    """A random rational in (lo, hi), exact so that evalf can reach any precision."""
-    return sp.Rational(round(rng.uniform(lo, hi) * 10**6), 10**6)
-
-
-def num(expr, subs):
-    """Evaluate expr at subs (dynamicsymbols and parameters -> exact numbers) to DPS+10 digits."""
-    val = sp.sympify(expr).xreplace(subs).evalf(DPS + 10)
-    assert not val.free_symbols, f"unsubstituted symbols {val.free_symbols} in {expr}"
-    re, im = val.as_real_imag()
-    assert abs(im) < 1e-30, f"complex value {val}"
-    return mpmath.mpf(sp.Float(re, DPS + 10)._mpf_)
-
-
-def close(a, b, tol=TOL):
-    return abs(a - b) <= tol * max(1, abs(a), abs(b))
 
 
 def random_point(system, rng):

@@ -39,9 +39,9 @@ from sympy.physics.mechanics import dynamicsymbols
 
 import whittaker_teach as wt
 
+from .numbers import DPS, TOL, close, num, rat  # noqa: F401
+
 t = dynamicsymbols._t
-DPS = 30
-TOL = mpmath.mpf("1e-20")
 
 SETTINGS = dict(deadline=None, derandomize=True, database=None, print_blob=False,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
@@ -139,20 +139,6 @@ def rich_specs(draw, n_ind=2, max_dep=2):
 
 
 # ------------------------------------------------------------------ numerics
-def rat(rng, lo, hi):
-    return sp.Rational(round(rng.uniform(lo, hi) * 10**6), 10**6)
-
-
-def num(expr, subs):
-    val = sp.sympify(expr).xreplace(subs).evalf(DPS + 10)
-    assert not val.free_symbols, f"unsubstituted symbols {val.free_symbols} in {expr}"
-    re, im = val.as_real_imag()
-    assert abs(im) < 1e-30, f"complex value {val}"
-    return mpmath.mpf(sp.Float(re, DPS + 10)._mpf_)
-
-
-def close(a, b, tol=TOL):
-    return abs(a - b) <= tol * max(1, abs(a), abs(b))
 
 
 def check_chain_rule(system, red, eps, rng, points=2):
