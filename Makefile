@@ -38,8 +38,8 @@ help:
 setup: $(SETUP_STAMP) mathjax
 
 # Re-install when pyproject.toml changes, or when the package first appears.
-$(SETUP_STAMP): pyproject.toml $(wildcard whittaker_teach/__init__.py)
-	$(PYTHON) -m pip install -q --root-user-action=ignore -e ".[test,book]"
+$(SETUP_STAMP): pyproject.toml requirements/constraints.txt $(wildcard whittaker_teach/__init__.py)
+	$(PYTHON) -m pip install -q --root-user-action=ignore -c requirements/constraints.txt -e ".[test,book]"
 	@mkdir -p $(@D) && touch $@
 
 mathjax:
