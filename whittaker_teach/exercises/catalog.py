@@ -10,6 +10,8 @@ check of its exercise only.
 
 from __future__ import annotations
 
+import functools
+
 import sympy as sp
 
 from .compare import Domain
@@ -184,15 +186,21 @@ def _sledge_domain(names):
                    k: POSITIVE}, conditions=(2 * h - k**2 * th**2,))
 
 
+@functools.lru_cache(maxsize=None)
+def _sledge_reduction():
+    """The sledge reduced in x (xdot > 0): built once, shared by the sledge exercises."""
+    import whittaker_teach as wt
+    return wt.examples.sledge().reduce("x", +1)
+
+
 # ---------------------------------------------------------------- constraint-star
 def _constraint_star():
-    import whittaker_teach as wt
     from sympy.physics.mechanics import dynamicsymbols
     names = _sledge_names()
     x, v, th, thp, thpp = (names[n] for n in "x xdot theta thetaprime thetaprimeprime".split())
     h, m, J, k = (names[n] for n in "h m J k".split())
-    S = wt.examples.sledge()
-    red = S.reduce("x", +1)
+    red = _sledge_reduction()
+    S = red.system
     t = dynamicsymbols._t
     xs, ths, ys = S.coordinates
     phi = plain(S.constraints[ys.diff(t)], names)                        # (3.2)
@@ -222,10 +230,9 @@ def _constraint_star():
 
 # ---------------------------------------------------------------- sledge-L-star
 def _sledge_L_star():
-    import whittaker_teach as wt
     names = _sledge_names()
     v, th, thp, h, m, J, k = (names[n] for n in "xdot theta thetaprime h m J k".split())
-    red = wt.examples.sledge().reduce("x", +1)
+    red = _sledge_reduction()
     parts = [
         Part("Omega", "Omega (3.6): L~ (3.3) with thetadot = xdot theta'",
              plain(red.Omega, names), (v, th, thp, m, J, k),
@@ -250,11 +257,10 @@ def _sledge_L_star():
 
 # ---------------------------------------------------------------- sledge-reduced-equation
 def _sledge_reduced_equation():
-    import whittaker_teach as wt
     names = _sledge_names()
     th, thp, thpp, h, m, J, k = (names[n] for n in
                                  "theta thetaprime thetaprimeprime h m J k".split())
-    red = wt.examples.sledge().reduce("x", +1)
+    red = _sledge_reduction()
     acc = plain(_one(red.accelerations()), names)
     R = 2 * h - k**2 * th**2
     # (3.10) is J R (theta'' - acc) = 0; its term free of theta' and theta''
@@ -352,7 +358,7 @@ def _turning_point():
     th, C, a, J, k = (names[n] for n in "theta C a J k".split())
     p = {n: TURNING[n] for n in "mJk"}
     ex = wt.examples.sledge_exact(p, a=TURNING["a"], phi=-math.pi / 2, C=TURNING["C"])
-    red = wt.examples.sledge().reduce("x", +1)
+    red = _sledge_reduction()
     q0, qp0, h0 = ex.reduced_initial()
     outcome = "continues"
     try:
