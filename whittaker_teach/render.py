@@ -35,7 +35,7 @@ import sympy as sp
 
 __all__ = ["step_unicode", "step_latex", "derivation_unicode", "derivation_latex", "show",
            "equation_latex", "equation_unicode", "tex_width", "terminal_width", "math_latex",
-           "text_unicode", "text_markdown", "LATEX_WIDTH", "MARK"]
+           "text_unicode", "text_markdown", "check_markdown", "LATEX_WIDTH", "MARK"]
 
 MARK = {"verified": "✓", "FAILED": "✗", "not verified": "?", "derived": ""}
 
@@ -182,6 +182,8 @@ def _inner(term):
     The widest sum among the factors (numerator first); a Derivative is split
     inside its argument.  ``outside`` is None for a Derivative (shown as d/dx).
     """
+    if getattr(term, "is_total_derivative", False) and isinstance(term.args[0], sp.Add):
+        return ("d", term.args[1]), term.args[0]
     if isinstance(term, sp.Derivative) and isinstance(term.expr, sp.Add) and \
             len(term.variables) == 1:
         return ("d", term.variables[0]), term.expr
@@ -281,6 +283,8 @@ def _item_tex(it, first):
         pre = rf"\frac{{d}}{{d {sp.latex(o[1])}}}"
     elif o[1] == 1:
         pre = ""
+    elif isinstance(o[1], sp.Add):
+        pre = r"\left(" + sp.latex(o[1]) + r"\right)"
     else:
         pre = sp.latex(o[1])
     return op + pre + r"\left("
@@ -390,7 +394,10 @@ def _row_pictures(row, depth_in):
                 elif o[1] == 1:
                     pre = _text_pf("")
                 else:
-                    pre = _join([_pf(o[1]), _text_pf("⋅")])
+                    body = _pf(o[1])
+                    if isinstance(o[1], sp.Add):
+                        body = prettyForm(*body.parens())
+                    pre = _join([body, _text_pf("⋅")])
                 stack.append(pre)
                 segs.append([])
                 first = True
@@ -471,7 +478,8 @@ _SUP = str.maketrans("0123456789+-*", "⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻*")
 
 
 def _tex_to_unicode(tex):
-    s = re.sub(r"\\(mathrm|text|operatorname)\{([^{}]*)\}", r"\2", tex)
+    s = re.sub(r"\\operatorname\{([^{}]*)\}\s*", r"\1 ", tex)
+    s = re.sub(r"\\(mathrm|text)\{([^{}]*)\}", r"\2", s)
     s = re.sub(r"\\frac\{([^{}]*)\}\{([^{}]*)\}", r"\1/\2", s)
     for a, b in _UNI:
         s = re.sub(re.escape(a) + r"(?![A-Za-z])", b, s)
@@ -480,6 +488,8 @@ def _tex_to_unicode(tex):
     s = re.sub(r"\^\{?([0-9+\-*]+)\}?", lambda m: m.group(1).translate(_SUP), s)
     s = re.sub(r"\\(dots|ldots)(?![A-Za-z])", "…", s)
     s = re.sub(r"\\([A-Za-z]+)", r"\1", s)
+    s = re.sub(r"_\{([^{}]{2,})\}", r"_(\1)", s)
+    s = re.sub(r"∂\s+", "∂", s)
     return s.replace("{", "").replace("}", "").replace("\\", "").replace("  ", " ")
 
 
@@ -572,6 +582,13 @@ def derivation_latex(derivation) -> str:
     return "\n".join(out)
 
 
+def check_markdown(check) -> str:
+    """``check.describe()`` for a notebook: the claim's maths typeset by MathJax."""
+    from dataclasses import replace
+    mark = "\x00CLAIM\x00"
+    return replace(check, claim=mark).describe().replace(mark, text_markdown(check.claim))
+
+
 def _in_notebook():
     try:
         from IPython import get_ipython
@@ -589,7 +606,7 @@ def show(derivation, latex=False):
         for s in derivation.steps:
             text = f"**({s.label})** {text_markdown(s.title)}"
             if s.check:
-                text += f"  \n{MARK[s.status]} {text_markdown(s.check.describe())}"
+                text += f"  \n{MARK[s.status]} {check_markdown(s.check)}"
             if s.note:
                 text += f"  \n*{text_markdown(s.note)}*"
             display(Markdown(text))
