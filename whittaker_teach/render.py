@@ -34,14 +34,16 @@ import textwrap
 import sympy as sp
 
 __all__ = ["step_unicode", "step_latex", "derivation_unicode", "derivation_latex", "show",
-           "equation_latex", "equation_unicode", "tex_width", "terminal_width", "math_latex",
+           "equation_latex", "equation_unicode", "tex_width", "display_width", "terminal_width", "math_latex",
            "text_unicode", "text_markdown", "check_markdown", "LATEX_WIDTH", "MARK"]
 
 MARK = {"verified": "✓", "FAILED": "✗", "not verified": "?", "derived": ""}
 
 #: Width (em of MathJax's default font, :func:`tex_width`) of the body of a display
-#: equation: with its tag, it fits a 700 px column at the book's 16 px font.
-LATEX_WIDTH = 30.0
+#: equation.  Calibrated in Chromium (MathJax 3 CHTML, 16 px text): one estimated em
+#: is 19.4 px (median over 339 rows of the examples' steps; 10-90 %: 18.2-20.4 px),
+#: so 28 em is about 545 px and leaves room for the tag in a 700 px column.
+LATEX_WIDTH = 28.0
 #: Columns of the terminal output when it is not a terminal.
 DEFAULT_COLUMNS = 100
 
@@ -162,6 +164,23 @@ def tex_width(tex: str) -> float:
     return w
 
 
+def display_width(tex: str) -> float:
+    r"""Estimated width, in em, of a display: :func:`tex_width`, and for an ``aligned``
+    block its widest left part (before ``&``) plus its widest right part.
+
+    >>> display_width(r"\begin{aligned}a &= b + c \cr &\quad {} + d\end{aligned}") > 0
+    True
+    """
+    tex = re.sub(r"\\tag\*?\{[^}]*\}", "", tex)
+    if r"\begin{aligned}" not in tex:
+        return tex_width(tex)
+    inner = tex[tex.index(r"\begin{aligned}") + 15:tex.rindex(r"\end{aligned}")]
+    rows = inner.split(r"\cr")
+    left = max(tex_width(r.split("&", 1)[0]) if "&" in r else 0.0 for r in rows)
+    right = max(tex_width(r.split("&", 1)[1]) if "&" in r else tex_width(r) for r in rows)
+    return left + right
+
+
 # ----- splitting an equation into terms -----------------------------------
 def _ordered_terms(expr):
     from sympy.printing.latex import LatexPrinter
@@ -265,70 +284,66 @@ def _plan(e, layout):
 
 
 # ----- LaTeX --------------------------------------------------------------
-def _item_tex(it, first):
+def _item_tex(it, tex):
     kind = it[0]
     if kind == "lhs":
-        return sp.latex(it[1]) + " &="
+        return tex(it[1]) + " &="
     if kind == "eq":
-        return "= " + sp.latex(it[1])
+        return "= " + tex(it[1])
     if kind == "cont":
         return r"&\quad {}"
     if kind == "close":
         return r"\right)"
     op = {"-": "- ", "+": "+ ", "": ""}[it[1]]
     if kind == "term":
-        return op + sp.latex(it[2])
+        return op + tex(it[2])
     o = it[2]                                           # open
     if o[0] == "d":
-        pre = rf"\frac{{d}}{{d {sp.latex(o[1])}}}"
+        pre = rf"\frac{{d}}{{d {tex(o[1])}}}"
     elif o[1] == 1:
         pre = ""
     elif isinstance(o[1], sp.Add):
-        pre = r"\left(" + sp.latex(o[1]) + r"\right)"
+        pre = r"\left(" + tex(o[1]) + r"\right)"
     else:
-        pre = sp.latex(o[1])
+        pre = tex(o[1])
     return op + pre + r"\left("
 
 
-def _row_tex(row, depth_in):
-    parts, depth, first = [], depth_in, True
-    if depth_in:
-        parts.append(r"\left.")
+def _row_tex(row, depth_in, tex):
+    r"""One row of an aligned block; brackets left open at the end of a row close with
+    ``\right.`` and reopen with ``\left.`` after the next row's ``&``."""
+    parts, depth = [], depth_in
     for it in row:
-        if it[0] in ("lhs", "cont"):
-            parts.append(_item_tex(it, True))
-            first = True
-            continue
-        parts.append(_item_tex(it, first))
-        first = False
+        parts.append(_item_tex(it, tex))
+        if it[0] == "cont":
+            parts += [r"\left."] * depth_in
         depth += {"open": 1, "close": -1}.get(it[0], 0)
-        if it[0] == "open":
-            first = True
-    if depth:
-        parts.append(r"\right.")
-    text = " ".join(parts).replace(r"\left( ", r"\left(").replace(r"\left. ", r"\left.")
-    return text, depth
+    parts += [r"\right."] * max(depth, 0)
+    return " ".join(parts).replace(r"\left( ", r"\left("), depth
 
 
-def _tex_rows(rows):
+def _tex_rows(rows, tex=sp.latex):
     out, depth = [], 0
     for r in rows:
-        text, depth = _row_tex(r, depth)
+        text, depth = _row_tex(r, depth, tex)
         out.append(text)
     return out
 
 
-def equation_latex(e, width=LATEX_WIDTH) -> str:
+def equation_latex(e, width=LATEX_WIDTH, **settings) -> str:
     """``e`` (an ``Eq`` or an expression) as LaTeX, broken at top-level + and - into an
-    ``aligned`` block when wider than ``width`` em (:func:`tex_width`)."""
-    whole = sp.latex(e)
+    ``aligned`` block when wider than ``width`` em (:func:`tex_width`); ``settings`` go
+    to ``sympy.latex`` (e.g. ``mul_symbol="dot"``)."""
+    def tex(x):
+        return sp.latex(x, **settings)
+    whole = tex(e)
     if tex_width(whole) <= width:
         return whole
-    layout = _Layout(lambda items: tex_width(" ".join(_tex_rows([items])[0:1])), width)
-    rows = _tex_rows(_plan(e, layout))
+    layout = _Layout(lambda items: tex_width(_tex_rows([items], tex)[0]), width)
+    rows = _tex_rows(_plan(e, layout), tex)
     if len(rows) == 1:
         return whole
-    if not any("&" in r for r in rows[:1]):
+    if "&" not in rows[0]:
         rows[0] = "& " + rows[0]
     return r"\begin{aligned}" + r" \cr ".join(rows) + r"\end{aligned}"
 
@@ -539,12 +554,16 @@ def math_latex(equations, label=None, width=LATEX_WIDTH) -> str:
     """Equations (``Eq`` or expressions) as one LaTeX display body: a single equation
     broken to ``width`` em, several in an ``aligned`` block, one ``\\tag`` for all."""
     body = [equation_latex(e, width) for e in equations]
+    e_of = dict(zip(body, equations))
     rows = []
     for b in body:
         if b.startswith(r"\begin{aligned}"):
             rows.append(b[len(r"\begin{aligned}"):-len(r"\end{aligned}")])
         elif len(body) > 1:
-            rows.append(b.replace("=", "&=", 1) if "=" in b else "&" + b)
+            # align at "=" only behind a short left side: a long one would widen the
+            # left column of every row
+            short = isinstance(e_of[b], sp.Equality) and tex_width(sp.latex(e_of[b].lhs)) <= 8
+            rows.append(b.replace("=", "&=", 1) if short else "&" + b)
         else:
             rows.append(b)
     if len(rows) == 1 and not body[0].startswith(r"\begin{aligned}"):
