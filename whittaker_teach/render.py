@@ -302,10 +302,10 @@ def _item_tex(it, tex):
         pre = rf"\frac{{d}}{{d {tex(o[1])}}}"
     elif o[1] == 1:
         pre = ""
-    elif isinstance(o[1], sp.Add):
-        pre = r"\left(" + tex(o[1]) + r"\right)"
     else:
-        pre = tex(o[1])
+        pre = tex(o[1]) if not isinstance(o[1], sp.Add) else r"\left(" + tex(o[1]) + r"\right)"
+        a, b = sp.symbols("A B")
+        pre += tex(a * b)[1:-1]                     # the printer's multiplication sign
     return op + pre + r"\left("
 
 
