@@ -12,9 +12,9 @@ a form shown is a claim, never an unchecked re-typing.
 
 >>> import whittaker_teach as wt
 >>> red = wt.examples.sledge().reduce("x")
->>> (form,) = whittaker_forms(red)
->>> print(sp.pretty(form, use_unicode=False, wrap_line=False).splitlines()[0].strip()[:20])
-______________________
+>>> (form,) = whittaker_forms(red)            # (3.9): the sledge's (1.26), read
+>>> [type(t).__name__ for t in sp.Add.make_args(form)]
+['Mul', 'TotalD']
 >>> check_reading("1.26", "the form shown equals (1.26)", [form], red._eqs, red).holds
 True
 """

@@ -319,7 +319,8 @@ class Reduction:
         st.append(Step("1.6", r"$\Omega$: $\tilde L$ with (1.5) substituted",
                        lambda: [eq(sp.Symbol("Omega"), collected(Om, [v]))]))
         tidy = lambda e: collected(e, [v] + list(qp.values()))  # noqa: E731
-        st.append(Step("1.7", r"$\partial\Omega/\partial\dot q_\varepsilon$", lambda: [eq(d("Omega", v), tidy(Omv))],
+        st.append(Step("1.7", r"$\partial\Omega/\partial\dot q_\varepsilon$",
+                       lambda: [eq(d("Omega", v), tidy(Omv))],
                        check_identity(
             "1.7", r"$\partial\Omega/\partial\dot q_\varepsilon = \sum_\sigma (\partial\tilde L/"
             r"\partial\dot q_\sigma)\,\dot q_\sigma/\dot q_\varepsilon$", Omv,
@@ -333,7 +334,8 @@ class Reduction:
         st.append(Step("1.9", r"$\partial\Omega/\partial q_\sigma$", lambda: [eq(d("Omega", qs[c]),
                                                              tidy(Om.diff(qs[c]))) for c in sig],
                        check_identity(
-            "1.9", r"$\partial\Omega/\partial q_\sigma = \partial\tilde L/\partial q_\sigma$", [Om.diff(qs[c]) for c in sig],
+            "1.9", r"$\partial\Omega/\partial q_\sigma = \partial\tilde L/\partial q_\sigma$",
+            [Om.diff(qs[c]) for c in sig],
             [self._sub15(Lt.diff(qs[c])) for c in sig], smp)))
         E13 = v * Omv - Om
         st.append(Step("1.13", "the energy integral in the new variables",
@@ -412,7 +414,8 @@ class Reduction:
                    [eq(o, w) for o, w in zip(om, self._omega)]),
               Step("1.23", r"$\dot q^* = \partial\omega/\partial\dot q_\varepsilon$",
                    [eq(s_, q) for s_, q in zip(star, self._qdstar)], check_zero(
-                       "1.23", r"$\dot q^*$ is free of $\dot q_\varepsilon$", [q.diff(v) for q in self._qdstar],
+                       "1.23", r"$\dot q^*$ is free of $\dot q_\varepsilon$",
+                       [q.diff(v) for q in self._qdstar],
                        smp)),
               Step("1.24", "(1.10) in the new variables", lambda: [
                   eq(v * partial(sp.pretty(o), sp.latex(o), v) - o, 0) for o in om], check_zero(

@@ -362,7 +362,7 @@ def _text_pf(text):
 def _row_pictures(row, depth_in):
     """The row as one prettyForm, with open brackets drawn to the row's height."""
     from sympy.printing.pretty.stringpict import prettyForm
-    segs, stack, first = [[]], [], True    # segs[-1]: pictures at the current depth
+    segs, stack = [[]], []    # segs[-1]: pictures at the current depth
     if depth_in:
         for _ in range(depth_in):
             segs.append([])
@@ -376,7 +376,6 @@ def _row_pictures(row, depth_in):
         if kind == "lhs":
             add(_pf(it[1]))
             add(_text_pf(" = "))
-            first = True
         elif kind == "eq":
             add(_text_pf(" = "))
             add(_pf(it[1]))
@@ -391,7 +390,6 @@ def _row_pictures(row, depth_in):
             pic = prettyForm(*inner.parens("(" if pre is not None else "", ")"))
             add(pre if pre is not None else _text_pf(""))
             add(pic)
-            first = False
         else:
             sign = it[1]
             op = {"-": " - ", "+": " + ", "": ""}[sign]
@@ -401,7 +399,6 @@ def _row_pictures(row, depth_in):
                 add(_text_pf(op))
             if kind == "term":
                 add(_pf(it[2]))
-                first = False
             else:
                 o = it[2]
                 if o[0] == "d":
@@ -415,7 +412,6 @@ def _row_pictures(row, depth_in):
                     pre = _join([body, _text_pf("⋅")])
                 stack.append(pre)
                 segs.append([])
-                first = True
     depth = len(stack)
     while stack:                          # unclosed at the end of the row
         inner = _join(segs.pop())
@@ -506,10 +502,6 @@ def _tex_to_unicode(tex):
     s = re.sub(r"_\{([^{}]{2,})\}", r"_(\1)", s)
     s = re.sub(r"∂\s+", "∂", s)
     return s.replace("{", "").replace("}", "").replace("\\", "").replace("  ", " ")
-
-
-def _uni_word(w):
-    return dict(_UNI).get("\\" + w, w)
 
 
 def text_unicode(text: str) -> str:

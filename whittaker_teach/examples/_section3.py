@@ -77,7 +77,8 @@ def section3_steps(red):
         "3.7", r"the printed $L^*$ equals (1.16)", printed, red._Lstar, smp)))
     st.append(Step("3.8", r"$\dot y^*$ (1.23)", [eq(notation("ẏ*", r"\dot{y}^{*}"),
                                                    red._qdstar[0])], check_identity(
-        "3.8", r"$\partial(\dot x\tan\theta)/\partial\dot x = \tan\theta$", red._qdstar[0], sp.tan(th), smp)))
+        "3.8", r"$\partial(\dot x\tan\theta)/\partial\dot x = \tan\theta$", red._qdstar[0],
+        sp.tan(th), smp)))
     A = J * thp**2 + m * sec2
     R = 2 * h - k**2 * th**2
     printed = (red._D(s * sp.sqrt(R) * J * thp / sp.sqrt(A))
