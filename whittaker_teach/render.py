@@ -35,7 +35,7 @@ import sympy as sp
 
 __all__ = ["step_unicode", "step_latex", "derivation_unicode", "derivation_latex", "show",
            "equation_latex", "equation_unicode", "tex_width", "display_width", "terminal_width", "math_latex",
-           "text_unicode", "text_markdown", "check_markdown", "LATEX_WIDTH", "MARK"]
+           "text_unicode", "text_markdown", "check_markdown", "show_equation", "LATEX_WIDTH", "MARK"]
 
 MARK = {"verified": "✓", "FAILED": "✗", "not verified": "?", "derived": ""}
 
@@ -598,6 +598,22 @@ def check_markdown(check) -> str:
     from dataclasses import replace
     mark = "\x00CLAIM\x00"
     return replace(check, claim=mark).describe().replace(mark, text_markdown(check.claim))
+
+
+def show_equation(e, label=None, lhs=None):
+    """Show one equation (or expression; with ``lhs``, ``lhs = e``) as the steps are shown:
+    in a notebook a MathJax display broken to fit the column (tag ``label`` if given), in
+    a terminal Unicode at its width.  For a chapter's own displays, e.g.
+    ``show_equation(red.L_star, "1.16", lhs=sp.Symbol("L^*"))``."""
+    if lhs is not None:
+        e = sp.Eq(lhs, e, evaluate=False)
+    if _in_notebook():
+        from IPython.display import Math, display
+        display(Math(math_latex([e], label)))
+        return None
+    text = equation_unicode(e)
+    print(f"({label})\n" + textwrap.indent(text, "    ") if label else text)
+    return None
 
 
 def _in_notebook():
