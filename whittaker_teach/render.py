@@ -35,7 +35,8 @@ import sympy as sp
 
 __all__ = ["step_unicode", "step_latex", "derivation_unicode", "derivation_latex", "show",
            "equation_latex", "equation_unicode", "tex_width", "display_width", "terminal_width", "math_latex",
-           "text_unicode", "text_markdown", "check_markdown", "show_equation", "LATEX_WIDTH", "MARK"]
+           "text_unicode", "text_markdown", "check_markdown", "show_equation", "html_maths",
+           "check_html", "LATEX_WIDTH", "MARK"]
 
 MARK = {"verified": "✓", "FAILED": "✗", "not verified": "?", "derived": ""}
 
@@ -625,18 +626,60 @@ def _in_notebook():
     return ip is not None and type(ip).__name__ == "ZMQInteractiveShell"
 
 
+def html_maths(text: str) -> str:
+    """Text with ``$...$`` maths as HTML: the maths in ``span.math`` with ``\\(...\\)``, as
+    Sphinx writes inline maths (MathJax typesets it on the site and in JupyterLab), the
+    rest escaped.  (A Markdown output would not do: myst-nb renders it as CommonMark,
+    without dollar maths, and curls the primes.)
+
+    >>> print(html_maths("the form of $L^*$ & more"))
+    the form of <span class="math notranslate nohighlight">\\(L^*\\)</span> &amp; more
+    """
+    from html import escape
+    out = []
+    for p in re.split(r"(\$[^$]+\$)", text):
+        if len(p) > 1 and p.startswith("$") and p.endswith("$"):
+            out.append(rf'<span class="math notranslate nohighlight">\({escape(p[1:-1])}\)</span>')
+        else:
+            out.append(escape(p))
+    return "".join(out)
+
+
+def check_html(check) -> str:
+    """``check.describe()`` as HTML, the claim's maths typeset."""
+    from dataclasses import replace
+    from html import escape
+    mark = "\x00CLAIM\x00"
+    return escape(replace(check, claim=mark).describe()).replace(mark, html_maths(check.claim))
+
+
+def _caption(s):
+    """The caption of a step for a notebook: HTML (typeset maths), Markdown and text."""
+    html = [f"<strong>({s.label})</strong> {html_maths(s.title)}"]
+    md = [f"**({s.label})** {text_markdown(s.title)}"]
+    text = [f"({s.label}) {text_unicode(s.title)}"]
+    if s.check:
+        html.append(f"{MARK[s.status]} {check_html(s.check)}")
+        md.append(f"{MARK[s.status]} {check_markdown(s.check)}")
+        text.append(f"{MARK[s.status]} {s.check.describe()}")
+    if s.note:
+        html.append(f"<em>{html_maths(s.note)}</em>")
+        md.append(f"*{text_markdown(s.note)}*")
+        text.append(text_unicode(s.note))
+    return {"text/html": '<div class="wt-step">' + "<br>".join(html) + "</div>",
+            "text/markdown": "  \n".join(md), "text/plain": "\n".join(text)}
+
+
 def show(derivation, latex=False):
     """Show every step: rendered maths in a notebook, Unicode (or LaTeX) in a terminal."""
     if _in_notebook():
-        from IPython.display import Markdown, Math, display
-        display(Markdown(f"**{text_markdown(derivation.title)}**"))
+        from IPython.display import Math, display
+        t = derivation.title
+        display({"text/html": f"<strong>{html_maths(t)}</strong>",
+                 "text/markdown": f"**{text_markdown(t)}**",
+                 "text/plain": text_unicode(t)}, raw=True)
         for s in derivation.steps:
-            text = f"**({s.label})** {text_markdown(s.title)}"
-            if s.check:
-                text += f"  \n{MARK[s.status]} {check_markdown(s.check)}"
-            if s.note:
-                text += f"  \n*{text_markdown(s.note)}*"
-            display(Markdown(text))
+            display(_caption(s), raw=True)
             if s.equations:
                 display(Math(step_latex(s)))
         return None

@@ -109,12 +109,14 @@ class Report(list):
     def _repr_html_(self):
         """A table (equation, claim, how, largest residual, held) that wraps in a narrow column."""
         from html import escape
+
+        from .render import html_maths
         rows = []
         for c in self:
             how = {"exact": f"exactly ({c.detail})",
                    "numeric": f"at {c.points} points, {c.detail}"}.get(c.method, c.detail)
             res = f"{c.max_residual:.1e}" if c.method in ("numeric", "refutation") else "0"
-            cells = [f"({escape(c.label)})", _html_maths(c.claim), escape(how), res,
+            cells = [f"({escape(c.label)})", html_maths(c.claim), escape(how), res,
                      {True: "yes", False: "NO", None: "not verified"}[c.holds]]
             rows.append("<tr>" + "".join(f"<td>{v}</td>" for v in cells) + "</tr>")
         head = "".join(f"<th>{h}</th>" for h in ("eq.", "claim", "how", "residual", "held"))
@@ -122,16 +124,6 @@ class Report(list):
                 'overflow-wrap:anywhere">'
                 f"<caption>{escape(self.summary())}</caption><thead><tr>{head}</tr></thead>"
                 "<tbody>" + "".join(rows) + "</tbody></table>")
-
-
-def _html_maths(text):
-    """Text with ``$...$`` maths as HTML: the maths as Sphinx writes inline maths
-    (MathJax typesets ``span.math``), the rest escaped."""
-    import re
-    from html import escape
-    return "".join(escape(p) if not (p.startswith("$") and p.endswith("$") and len(p) > 1)
-                   else rf'<span class="math notranslate nohighlight">\({escape(p[1:-1])}\)</span>'
-                   for p in re.split(r"(\$[^$]+\$)", text))
 
 
 class Derivation:
