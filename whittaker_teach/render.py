@@ -11,8 +11,8 @@ Long equations are broken over several lines, at the top-level ``+``/``-``
 * LaTeX: an ``aligned`` block, rows ending with ``\\cr`` (Sphinx wraps any
   display containing ``\\\\`` in a ``split`` where MathJax refuses ``\\tag``),
   one tag for the whole block.  The width is estimated by :func:`tex_width`
-  (in em of MathJax's default font; :data:`LATEX_WIDTH` em fit a 700 px column
-  with the tag);
+  (in em of MathJax's font; the body and two tag widths fit :data:`PAGE_WIDTH`,
+  the book's 688 px column, see :func:`math_latex`);
 * Unicode: SymPy's 2-D pictures joined term by term, every line at most the
   terminal's width (100 columns when the output is not a terminal).
 
@@ -34,17 +34,29 @@ import textwrap
 import sympy as sp
 
 __all__ = ["step_unicode", "step_latex", "derivation_unicode", "derivation_latex", "show",
-           "equation_latex", "equation_unicode", "tex_width", "display_width", "terminal_width", "math_latex",
+           "equation_latex", "equation_unicode", "tex_width", "display_width", "tag_width",
+           "PAGE_WIDTH", "terminal_width", "math_latex",
            "text_unicode", "text_markdown", "check_markdown", "show_equation", "html_maths",
            "check_html", "LATEX_WIDTH", "MARK"]
 
 MARK = {"verified": "✓", "FAILED": "✗", "not verified": "?", "derived": ""}
 
 #: Width (em of MathJax's default font, :func:`tex_width`) of the body of a display
-#: equation.  Calibrated in Chromium (MathJax 3 CHTML, 16 px text): one estimated em
-#: is 19.4 px (median over 339 rows of the examples' steps; 10-90 %: 18.2-20.4 px),
-#: so 28 em is about 545 px and leaves room for the tag in a 700 px column.
+#: equation without a tag.
 LATEX_WIDTH = 28.0
+#: Width, in the same em, of the book's column: measured in Chromium on the built site
+#: (Jupyter Book theme at 1280 px: a 688 px column, MathJax at 20.4 px per em; the
+#: estimate is within 10 % for 80 % of the rows of the examples), less 1 em of margin.
+#: MathJax centres a tagged display between two tag-wide margins, so the body of a
+#: display tagged (1.26) may be ``PAGE_WIDTH - 2 * tag width`` wide.
+PAGE_WIDTH = 32.5
+
+
+def tag_width(label) -> float:
+    """Estimated width, in em, of the tag ``(label)`` that MathJax sets at the margin."""
+    return 0.55 * (len(str(label)) + 2) if label else 0.0
+
+
 #: Columns of the terminal output when it is not a terminal.
 DEFAULT_COLUMNS = 100
 
@@ -119,7 +131,7 @@ def tex_width(tex: str) -> float:
                 w += tex_width(a) + 1.0
             elif name in ("left", "right"):
                 d, i = _group(tex, i)
-                w += 0.0 if d == "." else 0.45
+                w += 0.0 if d == "." else 0.7
             elif name in ("begin", "end", "tag"):
                 _, i = _group(tex, i)
             elif name in ("text", "mathrm", "textrm", "operatorname"):
@@ -545,18 +557,20 @@ def _tag(label):
 
 def math_latex(equations, label=None, width=LATEX_WIDTH) -> str:
     """Equations (``Eq`` or expressions) as one LaTeX display body: a single equation
-    broken to ``width`` em, several in an ``aligned`` block, one ``\\tag`` for all."""
+    broken to ``width`` em (at most ``PAGE_WIDTH`` less two tag widths), several in an
+    ``aligned`` block, one ``\\tag`` for all."""
+    width = min(width, PAGE_WIDTH - 2 * tag_width(label))
     body = [equation_latex(e, width) for e in equations]
-    e_of = dict(zip(body, equations))
+    # align at "=" only when every left side is short: a long one (or a broken
+    # equation, aligned at its own "&") would widen the left column of every row
+    at_equals = all(isinstance(e, sp.Equality) and tex_width(sp.latex(e.lhs)) <= 8
+                    for e in equations)
     rows = []
     for b in body:
         if b.startswith(r"\begin{aligned}"):
             rows.append(b[len(r"\begin{aligned}"):-len(r"\end{aligned}")])
         elif len(body) > 1:
-            # align at "=" only behind a short left side: a long one would widen the
-            # left column of every row
-            short = isinstance(e_of[b], sp.Equality) and tex_width(sp.latex(e_of[b].lhs)) <= 8
-            rows.append(b.replace("=", "&=", 1) if short else "&" + b)
+            rows.append(b.replace("=", "&=", 1) if at_equals else "&" + b)
         else:
             rows.append(b)
     if len(rows) == 1 and not body[0].startswith(r"\begin{aligned}"):
