@@ -240,11 +240,13 @@ class _Layout:
 
     def __init__(self, measure, width):
         self.measure, self.width = measure, width
+        self.tail = []      # what ends the last row ("= 0"): a term must fit with it
 
     def items(self, expr, sign, depth=0):
         """The items of a signed term, split inside when it is alone too wide."""
         whole = [("term", sign, expr)]
-        if depth >= 2 or self.measure(whole) <= self.width:
+        # measured as it would stand: on a continuation row, before what ends the last row
+        if depth >= 2 or self.measure([("cont",)] + whole + self.tail) <= self.width:
             return whole
         inner = _inner(expr)
         if inner is None:
@@ -292,6 +294,7 @@ def _plan(e, layout):
         return layout.rows([], _terms_items(layout, lhs), [])
     if rhs == 0 or (layout.measure([("term", "", lhs)]) > layout.measure([("term", "", rhs)])
                     and not isinstance(lhs, (sp.Symbol, sp.Function))):
+        layout.tail = [("eq", rhs)]
         return layout.rows([], _terms_items(layout, lhs), [("eq", rhs)])
     return layout.rows([("lhs", lhs)], _terms_items(layout, rhs), [])
 
