@@ -319,8 +319,9 @@ class ChaplyginSystem:
         if "1.10" not in self._cache:
             res = []
             for c, r in zip(self.dependent_coordinates, self._euler_residuals()):
-                chk = check_zero("1.10", f"{_name(c)}dot = phi is homogeneous of degree one "
-                                 "in the independent velocities (Euler's relation)",
+                phi = f"${sp.latex(self.qd[c])} = \\varphi_{{{sp.latex(self.q[c])}}}$"
+                chk = check_zero("1.10", phi + " is homogeneous of degree one in the "
+                                 "independent velocities (Euler's relation)",
                                  r, self._sample_time, seed=10)
                 if not chk.holds:
                     raise ModelError(
@@ -405,7 +406,7 @@ class ChaplyginSystem:
                               "derivatives of this system", lambda: self._euler_shown(), worst,
                               note="(1.10) and (1.11) belong to the system in time: they are "
                               "shown with it, before the change of variable (1.5)-(1.9)"))
-        chk = check_zero("1.11", "dE/dt = 0 along the solutions of (1.4)",
+        chk = check_zero("1.11", "$dE/dt = 0$ along the solutions of (1.4)",
                          self._energy_rate(), self._sample_time, seed=11)
         steps.append(Step("1.11", "the energy integral", [eq(self._energy(), sp.Symbol("h"))],
                           chk))
