@@ -600,14 +600,22 @@ def derivation_unicode(derivation, width=None) -> str:
     return "\n\n".join([head] + [step_unicode(s, width) for s in derivation.steps])
 
 
-def derivation_latex(derivation) -> str:
-    out = [f"% {derivation.title}"]
+def derivation_latex(derivation, width=None) -> str:
+    """Every step as a LaTeX ``equation``, one row of a broken equation per line, with the
+    title and the check as comments wrapped at ``width`` columns (default the terminal's)."""
+    width = width or terminal_width()
+
+    def comment(text):
+        return "\n".join(textwrap.wrap(text, width, initial_indent="% ",
+                                        subsequent_indent="%   "))
+    out = [comment(derivation.title)]
     for s in derivation.steps:
-        out.append(f"% ({s.label}) {s.title}")
+        out.append(comment(f"({s.label}) {s.title}"))
         if s.equations:
-            out.append(r"\begin{equation}" + step_latex(s) + r"\end{equation}")
+            body = step_latex(s).replace(r" \cr ", " \\cr\n    ")
+            out.append(r"\begin{equation}" + body + r"\end{equation}")
         if s.check:
-            out.append(f"% {_check_line(s)}")
+            out.append(comment(_check_line(s)))
     return "\n".join(out)
 
 
