@@ -44,7 +44,9 @@ def _derive(args):
     from .steps import Report
     report = Report(checks)
     print()
-    print(str(report).splitlines()[-1])
+    import textwrap
+    from .render import terminal_width
+    print(textwrap.fill(report.summary(), terminal_width()))
     return 0 if report.ok else 1
 
 

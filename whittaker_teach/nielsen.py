@@ -40,27 +40,52 @@ def nielsen(red):
 
 def nielsen_steps(red):
     """Steps (2.1)-(2.4), each identity checked for this system."""
+    from .reading import check_reading, nielsen_forms, total_derivative_form
+    from .steps import partial
     S, Ls, smp = red.system, red._Lstar, red._sample
     n = nielsen(red)
     dL, nus = n["2.1"], red._nus
     qp, q = red._qp, S.q
     x = red.independent
-    st = [Step("2.1", "the total derivative of L* (q'' appears explicitly)",
-               [eq(notation(f"dL*/d{x}", rf"\frac{{d L^{{*}}}}{{d {sp.latex(x)}}}"), dL)])]
-    st.append(Step("2.2", "d/dq'_nu of (2.1)", [], check_identity(
-        "2.2", "d(dL*/dq_eps)/dq'_nu = d/dq_eps(dL*/dq'_nu) + dL*/dq_nu",
+    xl = sp.latex(x)
+    dform = total_derivative_form(red)
+    st = [Step("2.1", r"the total derivative of $L^*$ ($q''$ appears explicitly)",
+               [eq(notation(f"dL*/d{x}", rf"\frac{{d L^{{*}}}}{{d {xl}}}"), dform)],
+               check_reading("2.1", rf"the form shown is $dL^*/d{xl}$ along a path", [dform],
+                             [dL], red))]
+
+    def claim22(z, f, ft):
+        """d/dq'(df/dx) = d/dx(df/dq') + df/dq, in the paper's notation."""
+        zt, zl = sp.pretty(qp[z], use_unicode=True), sp.latex(qp[z])
+        qt, ql = sp.pretty(q[z], use_unicode=True), sp.latex(q[z])
+        lhs = notation(f"∂/∂{zt}(d{f}/d{x})",
+                       rf"\frac{{\partial}}{{\partial {zl}}}\frac{{d {ft}}}{{d {xl}}}")
+        rhs = (notation(f"d/d{x}(∂{f}/∂{zt})",
+                        rf"\frac{{d}}{{d {xl}}}\frac{{\partial {ft}}}{{\partial {zl}}}")
+               + partial(f, ft, q[z]))
+        del qt, ql
+        return eq(lhs, rhs)
+    st.append(Step("2.2", r"$\partial/\partial q'_\nu$ of (2.1)",
+                   [claim22(c, "L*", "L^{*}") for c in nus], check_identity(
+        "2.2", r"$\partial(dL^*/dq_\varepsilon)/\partial q'_\nu = d/dq_\varepsilon(\partial L^*/"
+        r"\partial q'_\nu) + \partial L^*/\partial q_\nu$",
         [dL.diff(qp[c]) for c in nus],
         [red._D(Ls.diff(qp[c])) + Ls.diff(q[c]) for c in nus], smp)))
     if S.dependent_coordinates:
         lhs = [red._D(qs).diff(qp[c]) for qs in red._qdstar for c in nus]
         rhs = [red._D(qs.diff(qp[c])) + qs.diff(q[c]) for qs in red._qdstar for c in nus]
-        st.append(Step("2.3", "the same for qdot*", [], check_identity(
-            "2.3", "d(dqdot*/dq_eps)/dq'_nu = d/dq_eps(dqdot*/dq'_nu) + dqdot*/dq_nu",
+        shown = [claim22(c, sp.pretty(S.qd[d]) + "*", sp.latex(S.qd[d]) + "^{*}")
+                 for d in S.dependent_coordinates for c in nus]
+        st.append(Step("2.3", r"the same for $\dot q^*$", shown, check_identity(
+            "2.3", r"$\partial(d\dot q^*/dq_\varepsilon)/\partial q'_\nu = d/dq_\varepsilon"
+            r"(\partial\dot q^*/\partial q'_\nu) + \partial\dot q^*/\partial q_\nu$",
             lhs, rhs, smp)))
     else:
-        st.append(Step("2.3", "no constraints (g = 0): nothing to transform", []))
-    st.append(Step("2.4", "the equations in Nielsen form, one per q_nu",
-                   [eq(e, 0) for e in n["2.4"]], check_identity(
-                       "2.4", "(2.4) minus (1.26) vanishes: the Nielsen form is equivalent",
-                       n["2.4"], red._eqs, smp)))
+        st.append(Step("2.3", r"no constraints ($g = 0$): nothing to transform", []))
+    forms = nielsen_forms(red)
+    st.append(Step("2.4", r"the equations in Nielsen form, one per $q_\nu$",
+                   [eq(f, 0) for f in forms], check_reading(
+                       "2.4", "(2.4) minus (1.26) vanishes: the Nielsen form is equivalent; the "
+                       "form shown is (2.4)", list(n["2.4"]) + forms,
+                       list(red._eqs) + list(n["2.4"]), red)))
     return st

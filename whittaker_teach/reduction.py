@@ -35,6 +35,8 @@ from __future__ import annotations
 import sympy as sp
 
 from .errors import ModelError, ModelTypeError
+from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
+                      velocity_form, whittaker_forms)
 from .rewrite import collected, rational
 from .steps import Derivation, Report, Step, eq, notation, partial
 from .system import T, _name
@@ -311,68 +313,87 @@ class Reduction:
         def XD(z):
             return partial(sp.pretty(v), sp.latex(v), z)
         st = []
-        st.append(Step("1.5", f"change of variable: {ne} replaces t, q' = dq/d{ne}",
+        xl = sp.latex(self.independent)
+        st.append(Step("1.5", f"change of variable: ${xl}$ replaces $t$, $q' = dq/d{xl}$",
                        [eq(S.qd[c], v * qp[c]) for c in nus]))
-        st.append(Step("1.6", "Omega: L~ with (1.5) substituted",
+        st.append(Step("1.6", r"$\Omega$: $\tilde L$ with (1.5) substituted",
                        lambda: [eq(sp.Symbol("Omega"), collected(Om, [v]))]))
         tidy = lambda e: collected(e, [v] + list(qp.values()))  # noqa: E731
-        st.append(Step("1.7", "dOmega/dqdot_eps", lambda: [eq(d("Omega", v), tidy(Omv))],
+        st.append(Step("1.7", r"$\partial\Omega/\partial\dot q_\varepsilon$",
+                       lambda: [eq(d("Omega", v), tidy(Omv))],
                        check_identity(
-            "1.7", "dOmega/dqdot_eps = sum_sigma dL~/dqdot_sigma qdot_sigma/qdot_eps", Omv,
+            "1.7", r"$\partial\Omega/\partial\dot q_\varepsilon = \sum_\sigma (\partial\tilde L/"
+            r"\partial\dot q_\sigma)\,\dot q_\sigma/\dot q_\varepsilon$", Omv,
             self._sub15(sum((Lt.diff(S.qd[c]) * S.qd[c] for c in sig), sp.S.Zero)) / v, smp)))
-        st.append(Step("1.8", "dOmega/dq'_nu", lambda: [eq(d("Omega", qp[c]),
+        st.append(Step("1.8", r"$\partial\Omega/\partial q'_\nu$", lambda: [eq(d("Omega", qp[c]),
                                                           tidy(Om.diff(qp[c]))) for c in nus],
                        check_identity(
-            "1.8", "dOmega/dq'_nu = qdot_eps dL~/dqdot_nu", [Om.diff(qp[c]) for c in nus],
+            "1.8", r"$\partial\Omega/\partial q'_\nu = \dot q_\varepsilon\,\partial\tilde L/"
+            r"\partial\dot q_\nu$", [Om.diff(qp[c]) for c in nus],
             [v * self._sub15(Lt.diff(S.qd[c])) for c in nus], smp)))
-        st.append(Step("1.9", "dOmega/dq_sigma", lambda: [eq(d("Omega", qs[c]),
+        st.append(Step("1.9", r"$\partial\Omega/\partial q_\sigma$", lambda: [eq(d("Omega", qs[c]),
                                                              tidy(Om.diff(qs[c]))) for c in sig],
                        check_identity(
-            "1.9", "dOmega/dq_sigma = dL~/dq_sigma", [Om.diff(qs[c]) for c in sig],
+            "1.9", r"$\partial\Omega/\partial q_\sigma = \partial\tilde L/\partial q_\sigma$",
+            [Om.diff(qs[c]) for c in sig],
             [self._sub15(Lt.diff(qs[c])) for c in sig], smp)))
         E13 = v * Omv - Om
         st.append(Step("1.13", "the energy integral in the new variables",
                        lambda: [eq(collected(E13, [v]), h)], check_identity(
-            "1.13", "qdot_eps dOmega/dqdot_eps - Omega = (1.11) under (1.5)", E13,
-            self._sub15(S._energy()), smp)))
-        st.append(Step("1.12", f"(1.13) solved for qdot_eps, the branch with sign(qdot_eps) = "
-                       f"{self.direction:+d}", [eq(S.qd[eps], vs)], check_identity(
-            "1.12", "the chosen root solves (1.13) and has the sign of the motion",
-            [vs, self._star(E13)], [v, h], smp)))
+            "1.13", r"$\dot q_\varepsilon\,\partial\Omega/\partial\dot q_\varepsilon - \Omega$ "
+            "is the energy (1.11) under (1.5)", E13, self._sub15(S._energy()), smp),
+            note="shown before (1.12), which is (1.13) solved for the velocity"))
+        vform = velocity_form(self)
+        st.append(Step("1.12", r"(1.13) solved for $\dot q_\varepsilon$, the branch with "
+                       rf"$\operatorname{{sign}}\dot q_\varepsilon = {self.direction:+d}$",
+                       [eq(S.qd[eps], vform)], check_reading(
+            "1.12", "the chosen root solves (1.13) and has the sign of the motion; the form "
+            "shown is that root", [vs, self._star(E13), vform], [v, h, vs], self)))
         Ovv = Omv.diff(v)
-        for lab, vars_, what in (("1.14", [qp[c] for c in nus], "q'_nu"),
-                                 ("1.15", [qs[c] for c in sig], "q_sigma")):
-            st.append(Step(lab, f"(1.13) differentiated with respect to {what}",
+        for lab, vars_, what in (("1.14", [qp[c] for c in nus], r"q'_\nu"),
+                                 ("1.15", [qs[c] for c in sig], r"q_\sigma")):
+            st.append(Step(lab, f"(1.13) differentiated with respect to ${what}$",
                            lambda vars_=vars_: [eq(v * OM(v, v) * XD(z) + v * OM(v, z) - OM(z), 0)
                                                 for z in vars_],
-                           check_zero(lab, f"qdot_eps Omega_vv dqdot_eps/d{what} + qdot_eps "
-                                      f"Omega_v,{what} - dOmega/d{what} = 0 at (1.12)",
+                           check_zero(lab, r"$\dot q_\varepsilon\,\Omega_{\dot q_\varepsilon"
+                                      r"\dot q_\varepsilon}\,\partial\dot q_\varepsilon/\partial "
+                                      f"{what} + " r"\dot q_\varepsilon\,\Omega_{\dot "
+                                      rf"q_\varepsilon {what}}} - \partial\Omega/\partial {what}"
+                                      " = 0$ at (1.12)",
                                       [self._star(v * Ovv * vs.diff(z) + v * Omv.diff(z)
                                                   - Om.diff(z)) for z in vars_], smp)))
-        st.append(Step("1.16", "the reduced Lagrangian L* = dOmega/dqdot_eps at (1.12)",
-                       [eq(LSTAR, Ls)], check_identity(
-            "1.16", "L* equals dOmega/dqdot_eps with qdot_eps from (1.12)", Ls,
-            self._star(Omv), smp)))
-        for lab, vars_, what in (("1.17", [qp[c] for c in nus], "q'_nu"),
-                                 ("1.18", [qs[c] for c in sig], "q_sigma")):
-            st.append(Step(lab, f"dL*/d{what} by the chain rule",
+        lform = lstar_form(self)
+        st.append(Step("1.16", r"the reduced Lagrangian $L^* = \partial\Omega/\partial\dot "
+                       r"q_\varepsilon$ at (1.12)", [eq(LSTAR, lform)], check_reading(
+            "1.16", r"$L^*$ equals $\partial\Omega/\partial\dot q_\varepsilon$ with "
+            r"$\dot q_\varepsilon$ from (1.12); the form shown is $L^*$", [Ls, lform],
+            [self._star(Omv), Ls], self)))
+        for lab, vars_, what in (("1.17", [qp[c] for c in nus], r"q'_\nu"),
+                                 ("1.18", [qs[c] for c in sig], r"q_\sigma")):
+            st.append(Step(lab, rf"$\partial L^*/\partial {what}$ by the chain rule",
                            lambda vars_=vars_: [eq(LS(z), OM(v, v) * XD(z) + OM(v, z))
                                                 for z in vars_], check_identity(
-                lab, f"dL*/d{what} = Omega_vv dqdot_eps/d{what} + Omega_v,{what}",
+                lab, rf"$\partial L^*/\partial {what} = \Omega_{{\dot q_\varepsilon\dot "
+                r"q_\varepsilon}\,\partial\dot q_\varepsilon/\partial " f"{what} + "
+                rf"\Omega_{{\dot q_\varepsilon {what}}}$",
                 [Ls.diff(z) for z in vars_],
                 [self._star(Ovv * vs.diff(z) + Omv.diff(z)) for z in vars_], smp)))
         st.append(Step("1.19", "from (1.14) and (1.17)",
                        [eq(d("L^*", qp[c]), Ls.diff(qp[c])) for c in nus], check_identity(
-            "1.19", "dL*/dq'_nu = (1/qdot_eps) dOmega/dq'_nu", [Ls.diff(qp[c]) for c in nus],
+            "1.19", r"$\partial L^*/\partial q'_\nu = (1/\dot q_\varepsilon)\,\partial\Omega/"
+            r"\partial q'_\nu$", [Ls.diff(qp[c]) for c in nus],
             [self._star(Om.diff(qp[c]) / v) for c in nus], smp)))
         st.append(Step("1.20", "from (1.15) and (1.18)",
                        [eq(d("L^*", qs[c]), Ls.diff(qs[c])) for c in sig], check_identity(
-            "1.20", "dL*/dq_sigma = (1/qdot_eps) dOmega/dq_sigma (the OCR prints 1/qdot_sigma)",
+            "1.20", r"$\partial L^*/\partial q_\sigma = (1/\dot q_\varepsilon)\,\partial\Omega/"
+            r"\partial q_\sigma$ (the OCR prints $1/\dot q_\sigma$)",
             [Ls.diff(qs[c]) for c in sig], [self._star(Om.diff(qs[c]) / v) for c in sig], smp)))
         st.append(Step("1.21", "with (1.8) and (1.9)", lambda: [
             eq(LS(qp[c]), partial("L̃", r"\tilde{L}", S.qd[c])) for c in nus] + [
             eq(LS(qs[c]), partial("L̃", r"\tilde{L}", qs[c]) / v) for c in sig], check_identity(
-            "1.21", "dL*/dq'_nu = dL~/dqdot_nu and dL*/dq_sigma = (1/qdot_eps) dL~/dq_sigma",
+            "1.21", r"$\partial L^*/\partial q'_\nu = \partial\tilde L/\partial\dot q_\nu$ and "
+            r"$\partial L^*/\partial q_\sigma = (1/\dot q_\varepsilon)\,\partial\tilde L/"
+            r"\partial q_\sigma$",
             [Ls.diff(qp[c]) for c in nus] + [Ls.diff(qs[c]) for c in sig],
             [self._star(self._sub15(Lt.diff(S.qd[c]))) for c in nus]
             + [self._star(self._sub15(Lt.diff(qs[c])) / v) for c in sig], smp)))
@@ -384,20 +405,22 @@ class Reduction:
         S, v, smp = self.system, self._v, self._sample
         deps, nus, sig = S.dependent_coordinates, self._nus, S.independent_coordinates
         if not deps:
-            return [Step("1.22", "no constraints (g = 0): omega, qdot* and the constraint term "
-                         "of (1.26) are absent", [])]
+            return [Step("1.22", r"no constraints ($g = 0$): $\omega$, $\dot q^*$ and the "
+                         "constraint term of (1.26) are absent", [])]
         qp, qs = self._qp, {c: S.q[c] for c in S.coordinates}
         star = [notation(sp.pretty(S.qd[c]) + "*", sp.latex(S.qd[c]) + "^{*}") for c in deps]
         om = [sp.Symbol("omega_" + _name(c)) for c in deps]
-        st = [Step("1.22", "omega: the constraints with (1.5) substituted",
+        st = [Step("1.22", r"$\omega$: the constraints with (1.5) substituted",
                    [eq(o, w) for o, w in zip(om, self._omega)]),
-              Step("1.23", "qdot* = d omega/d qdot_eps",
+              Step("1.23", r"$\dot q^* = \partial\omega/\partial\dot q_\varepsilon$",
                    [eq(s_, q) for s_, q in zip(star, self._qdstar)], check_zero(
-                       "1.23", "qdot* is free of qdot_eps", [q.diff(v) for q in self._qdstar],
+                       "1.23", r"$\dot q^*$ is free of $\dot q_\varepsilon$",
+                       [q.diff(v) for q in self._qdstar],
                        smp)),
               Step("1.24", "(1.10) in the new variables", lambda: [
                   eq(v * partial(sp.pretty(o), sp.latex(o), v) - o, 0) for o in om], check_zero(
-                  "1.24", "qdot_eps d omega/d qdot_eps - omega = 0",
+                  "1.24", r"$\dot q_\varepsilon\,\partial\omega/\partial\dot q_\varepsilon - \omega"
+                  " = 0$",
                   [v * w.diff(v) - w for w in self._omega], smp))]
         phis = list(S._phi.values())
         lhs = [q.diff(qp[c]) for q in self._qdstar for c in nus]
@@ -413,19 +436,26 @@ class Reduction:
                 out += [eq(partial(s_.name, sp.latex(s_), qs[c]), partial(qd_t, qd_l, qs[c]) / v)
                         for c in sig]
             return out
-        st.append(Step("1.25", "derivatives of qdot*", shown, check_identity(
-            "1.25", "dqdot*/dq'_nu = dqdot_dep/dqdot_nu and dqdot*/dq_sigma = "
-            "(1/qdot_eps) dqdot_dep/dq_sigma", lhs, rhs, smp)))
+        st.append(Step("1.25", r"derivatives of $\dot q^*$", shown, check_identity(
+            "1.25", r"$\partial\dot q^*/\partial q'_\nu = \partial\dot q_{\varepsilon+\beta}/"
+            r"\partial\dot q_\nu$ and $\partial\dot q^*/\partial q_\sigma = (1/\dot "
+            r"q_\varepsilon)\,\partial\dot q_{\varepsilon+\beta}/\partial q_\sigma$", lhs, rhs,
+            smp)))
         return st
 
     def _momentum_step(self):
-        """The step after (1.26): (dL/dqdot_dep)* written in q', q and h."""
+        """(1.26a): (dL/dqdot_dep)* written in q', q and h, as used in (1.26)."""
         S = self.system
         names = [notation(f"(∂L/∂{sp.pretty(S.qd[c])})*",
                           rf"\left(\frac{{\partial L}}{{\partial {sp.latex(S.qd[c])}}}\right)^{{*}}")
                  for c in S.dependent_coordinates]
-        return Step("1.26", "where (dL/dqdot_dep)* is dL/dqdot_dep in q', q and h",
-                    [eq(a, b) for a, b in zip(names, self._Pstar)])
+        forms = momentum_forms(self)
+        return Step("1.26a", r"used in (1.26): $(\partial L/\partial\dot q_{\varepsilon+\beta})^*$,"
+                    r" $\partial L/\partial\dot q_{\varepsilon+\beta}$ in $q'$, $q$ and $h$",
+                    [eq(a, b) for a, b in zip(names, forms)], check_reading(
+                        "1.26a", r"the form shown is $\partial\tilde L/\partial\dot "
+                        r"q_{\varepsilon+\beta}$ under (1.5) and (1.12)", forms, self._Pstar,
+                        self))
 
     def _equation_steps(self):
         S, smp = self.system, self._sample
@@ -437,17 +467,26 @@ class Reduction:
             sub[S.qd[c]] = vs * self._qp[c]
             sub[S.qdd[c]] = vdot * self._qp[c] + vs**2 * self._qpp[c]
         eom = dict(zip(S.independent_coordinates, S._eom()))
-        shown = [*self._qpp.values(), *self._qp.values()]
-        st = [Step("1.26", "the generalized Whittaker equations, one per q_nu",
-                   lambda: [eq(collected(e, shown), 0) for e in self._eqs], check_identity(
-                       "1.26", "qdot_eps x (1.26) = the nu-th equation of (1.4) on the energy "
-                       "surface (1.12)", [vs * e for e in self._eqs],
-                       [eom[c].xreplace(sub) for c in nus], smp))]
+        forms = whittaker_forms(self)
+        st = [Step("1.26", r"the generalized Whittaker equations, one per $q_\nu$, each "
+                   r"derivative carried out but $d/d" + sp.latex(self.independent) + "$",
+                   [eq(f, 0) for f in forms], check_reading(
+                       "1.26", r"$\dot q_\varepsilon$ times (1.26) is the $\nu$-th equation of "
+                       "(1.4) on the energy surface (1.12); the form shown is (1.26)",
+                       [vs * e for e in self._eqs] + forms,
+                       [eom[c].xreplace(sub) for c in nus] + self._eqs, self))]
         if S.dependent_coordinates:
             st.append(self._momentum_step())
         self._accelerations()       # (1.26) must be solvable for q''
-        st.append(Step("1.26", "q''_nu solved from (1.26)",
-                       lambda: [eq(k, v) for k, v in self._tidy_accelerations().items()]))
+        tidy_acc = self._tidy_accelerations()
+        cleared = cleared_forms(self)
+        on = dict(tidy_acc)
+        st.append(Step("1.26b", r"$q''_\nu$ solved from (1.26), and (1.26) cleared of "
+                       "denominators", lambda: [eq(k, v) for k, v in tidy_acc.items()]
+                       + [eq(c, 0) for c in cleared], check_zero(
+                           "1.26b", r"(1.26) and the cleared form vanish at the $q''_\nu$ shown",
+                           [e.xreplace(on) for e in self._eqs]
+                           + [c.xreplace(on) for c in cleared], smp)))
         if S.is_holonomic:
             st.append(self._step_127())
         x = self.independent
@@ -456,8 +495,9 @@ class Reduction:
                   for c, q in zip(S.dependent_coordinates, self._qdstar)]
         chk = None
         if S.dependent_coordinates:
-            chk = check_identity("from 1.24", "dq_dep/dq_eps = qdot_dep/qdot_eps = qdot*",
-                                 [self._sub15(p) / self._v for p in S._phi.values()],
+            chk = check_identity("from 1.12", r"$dq_{\varepsilon+\beta}/dq_\varepsilon = "
+                                 r"\dot q_{\varepsilon+\beta}/\dot q_\varepsilon = \dot q^*$ "
+                                 "(1.23)", [self._sub15(p) / self._v for p in S._phi.values()],
                                  self._qdstar, smp)
         st.append(Step("from 1.12", "time and the dependent coordinates recovered by quadrature",
                        rates, chk))
@@ -474,17 +514,18 @@ class Reduction:
             back[f.diff(x)] = self._qp[c]
             back[f] = self.system.q[c]
         e27 = [-eq.lhs.xreplace(back) for eq in el]
-        chk = check_identity("1.27", "for g = 0, (1.26) is Whittaker's (1.27): the Euler-Lagrange "
-                             "equations of L* (sympy's euler_equations) agree", e27, self._eqs,
-                             self._sample)
-        return Step("1.27", "Whittaker's equations (g = 0)", [eq(e, 0) for e in e27], chk)
+        chk = check_identity("1.27", "for $g = 0$, (1.26) is Whittaker's (1.27): the "
+                             "Euler-Lagrange equations of $L^*$ (sympy's euler_equations) agree",
+                             e27, self._eqs, self._sample)
+        return Step("1.27", "Whittaker's equations ($g = 0$)", [eq(e, 0) for e in e27], chk)
 
     @property
     def steps(self):
         """Every step of the paper for this system: a :class:`Derivation` of :class:`Step`."""
         if "steps" not in self._cache:
-            title = (f"{self.system.name}: Whittaker reduction with q_eps = {self.independent}, "
-                     f"sign(qdot_eps) = {self.direction:+d}")
+            title = (f"{self.system.name}: Whittaker reduction with $q_\\varepsilon = "
+                     f"{sp.latex(self.independent)}$, $\\operatorname{{sign}}\\dot q_\\varepsilon = "
+                     f"{self.direction:+d}$")
             self._cache["steps"] = Derivation(title, self._steps())
         return self._cache["steps"]
 

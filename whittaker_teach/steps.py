@@ -82,19 +82,48 @@ class Report(list):
     def failed(self) -> list:
         return [c for c in self if c.holds is not True]
 
-    def __str__(self):
-        lines = [c.describe() for c in self]
+    def summary(self) -> str:
+        """One sentence: how many checks held, how, and the largest residual."""
         n_exact = sum(c.method == "exact" for c in self)
         n_num = sum(c.method == "numeric" for c in self)
         worst = max((c.max_residual for c in self if c.method == "numeric"), default=0.0)
-        lines.append(f"{len(self)} checks: {len(self) - len(self.failed)} held "
-                     f"({n_exact} exactly, {n_num} numerically, largest residual {worst:.1e}); "
-                     f"{len(self.failed)} did not")
+        return (f"{len(self)} checks: {len(self) - len(self.failed)} held "
+                f"({n_exact} exactly, {n_num} numerically, largest residual {worst:.1e}); "
+                f"{len(self.failed)} did not")
+
+    def to_text(self, width=None) -> str:
+        """Every check on its own line(s), wrapped at ``width`` columns (default: the
+        terminal's width, 100 when not a terminal), then the summary."""
+        import textwrap
+        from .render import terminal_width, text_unicode
+        width = width or terminal_width()
+        lines = []
+        for c in self:
+            lines += textwrap.wrap(text_unicode(c.describe()), width, subsequent_indent="    ")
+        lines += textwrap.wrap(self.summary(), width, subsequent_indent="    ")
         return "\n".join(lines)
 
-    def _repr_markdown_(self):
-        return "\n".join(f"- {c.describe()}" for c in self) + (
-            "\n\n**All checks held.**" if self.ok else "\n\n**Some checks did not hold.**")
+    def __str__(self):
+        return self.to_text()
+
+    def _repr_html_(self):
+        """A table (equation, claim, how, largest residual, held) that wraps in a narrow column."""
+        from html import escape
+
+        from .render import html_maths
+        rows = []
+        for c in self:
+            how = {"exact": f"exactly ({c.detail})",
+                   "numeric": f"at {c.points} points, {c.detail}"}.get(c.method, c.detail)
+            res = f"{c.max_residual:.1e}" if c.method in ("numeric", "refutation") else "0"
+            cells = [f"({escape(c.label)})", html_maths(c.claim), escape(how), res,
+                     {True: "yes", False: "NO", None: "not verified"}[c.holds]]
+            rows.append("<tr>" + "".join(f"<td>{v}</td>" for v in cells) + "</tr>")
+        head = "".join(f"<th>{h}</th>" for h in ("eq.", "claim", "how", "residual", "held"))
+        return ('<table class="wt-report" style="table-layout:auto;width:100%;'
+                'overflow-wrap:anywhere">'
+                f"<caption>{escape(self.summary())}</caption><thead><tr>{head}</tr></thead>"
+                "<tbody>" + "".join(rows) + "</tbody></table>")
 
 
 class Derivation:
@@ -123,13 +152,21 @@ class Derivation:
         return [s.label for s in self.steps]
 
     def only(self, *labels):
-        """The steps with these paper labels, in order, as a smaller Derivation.
+        """The steps with these paper labels, in order, as a smaller Derivation; a label
+        also selects its sub-labels ("1.26" selects (1.26a) and (1.26b), "3.10" selects
+        (3.10 OCR)).
 
         >>> import whittaker_teach as wt
         >>> wt.examples.sledge().reduce("x").steps.only("1.16", "1.23").labels
         ['1.16', '1.23']
+        >>> wt.examples.sledge().reduce("x").steps.only("1.26").labels
+        ['1.26', '1.26a', '1.26b']
         """
-        return Derivation(self.title, [s for s in self.steps if s.label in labels])
+        def wanted(label):
+            base = label.split(" ")[0]
+            return (label in labels or base in labels
+                    or (base[-1:].isalpha() and base[:-1] in labels))
+        return Derivation(self.title, [s for s in self.steps if wanted(s.label)])
 
     def show(self, latex=False):
         from .render import show

@@ -319,8 +319,9 @@ class ChaplyginSystem:
         if "1.10" not in self._cache:
             res = []
             for c, r in zip(self.dependent_coordinates, self._euler_residuals()):
-                chk = check_zero("1.10", f"{_name(c)}dot = phi is homogeneous of degree one "
-                                 "in the independent velocities (Euler's relation)",
+                phi = f"${sp.latex(self.qd[c])} = \\varphi_{{{sp.latex(self.q[c])}}}$"
+                chk = check_zero("1.10", phi + " is homogeneous of degree one in the "
+                                 "independent velocities (Euler's relation)",
                                  r, self._sample_time, seed=10)
                 if not chk.holds:
                     raise ModelError(
@@ -370,19 +371,20 @@ class ChaplyginSystem:
         steps = []
         dep_q = [self.q[c] for c in self.dependent_coordinates]
         if self.is_holonomic:
-            steps.append(Step("1.1", "constraints: none (g = 0, a holonomic system)", []))
+            steps.append(Step("1.1", "constraints: none ($g = 0$, a holonomic system)", []))
         else:
             steps.append(Step("1.1", "the dependent velocities, solved for (Chetaev-type ideal "
                               "constraints)",
                               [eq(self.qd[c], phi) for c, phi in
                                zip(self.dependent_coordinates, self._phi.values())]))
-        steps.append(Step("1.2", "L~: the Lagrangian with the constraints substituted",
+        steps.append(Step("1.2", r"$\tilde L$: the Lagrangian with the constraints substituted",
                           [eq(sp.Symbol("Ltilde"), self._Ltilde)], dep_q and check_zero(
-            "1.2", "the terms of (1.2) in dphi/dq_dep and dL~/dq_dep vanish (Chaplygin type)",
+            "1.2", r"the terms of (1.2) in $\partial\varphi/\partial q_{\varepsilon+\beta}$ and "
+            r"$\partial\tilde L/\partial q_{\varepsilon+\beta}$ vanish (Chaplygin type)",
             [phi.diff(s) for phi in self._phi.values() for s in dep_q]
             + [self._Ltilde.diff(s) for s in dep_q], self._sample_time) or None))
         if not self.is_holonomic:
-            free = ", ".join(_name(c) for c in self.independent_coordinates)
+            free = ", ".join(f"${sp.latex(self.q[c])}$" for c in self.independent_coordinates)
             steps.append(Step("1.3", f"Chaplygin type: each constraint depends on {free} and "
                               "their velocities only (checked when the model was built)",
                               [eq(self.qd[c], sp.Function("phi_" + _name(c))(
@@ -391,21 +393,38 @@ class ChaplyginSystem:
         chk = check_zero("1.4", "the solved accelerations satisfy (1.4)",
                          [e.xreplace(self._accelerations()) for e in self._eom()],
                          self._sample_time, seed=4)
-        steps.append(Step("1.4", "the generalized Chaplygin equations, one per q_sigma",
+        steps.append(Step("1.4", r"the generalized Chaplygin equations, one per $q_\sigma$",
                           [eq(e, 0) for e in self._eom()], chk))
-        steps.append(Step("1.4", "the accelerations solved from (1.4)",
+        steps.append(Step("1.4a", "the accelerations solved from (1.4)",
                           lambda: [eq(k, v) for k, v in self._tidy_accelerations().items()]))
         if not self.is_holonomic:
             h = self.check_homogeneity()
             worst = max(h, key=lambda c: (c.method == "numeric", c.max_residual))
-            steps.append(Step("1.10", "the constraints are homogeneous of degree one",
-                              [eq(r + phi, phi) for r, phi in
-                               zip(self._euler_residuals(), self._phi.values())], worst))
-        chk = check_zero("1.11", "dE/dt = 0 along the solutions of (1.4)",
+            steps.append(Step("1.10", "the constraints are homogeneous of degree one: "
+                              r"Euler's relation $\sum_\sigma (\partial\varphi/\partial"
+                              r"\dot q_\sigma)\,\dot q_\sigma = \varphi$, with the partial "
+                              "derivatives of this system", lambda: self._euler_shown(), worst,
+                              note="(1.10) and (1.11) belong to the system in time: they are "
+                              "shown with it, before the change of variable (1.5)-(1.9)"))
+        chk = check_zero("1.11", "$dE/dt = 0$ along the solutions of (1.4)",
                          self._energy_rate(), self._sample_time, seed=11)
         steps.append(Step("1.11", "the energy integral", [eq(self._energy(), sp.Symbol("h"))],
                           chk))
         return steps
+
+    def _euler_shown(self):
+        """(1.10) as the paper writes it, and the partial derivatives it is made of."""
+        from .steps import partial
+        out = []
+        for c, phi in zip(self.dependent_coordinates, self._phi.values()):
+            name = "φ_" + _name(c)
+            tex = r"\varphi_{" + sp.latex(self.q[c]) + "}"
+            sym = sp.Symbol(name)
+            sig = [self.qd[i] for i in self._sig]
+            out.append(eq(sp.Add(*[partial(name, tex, v) * v for v in sig]), sym))
+            out += [eq(partial(name, tex, v), phi.diff(v)) for v in sig]
+            out.append(eq(sym, phi))
+        return out
 
     @property
     def steps(self):

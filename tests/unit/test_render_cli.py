@@ -24,7 +24,7 @@ def test_latex_tags(sledge_red):
 def test_show_in_terminal(capsys, sledge_red):
     sledge_red.show()
     out = capsys.readouterr().out
-    assert "(1.12)" in out and "sign(qdot_eps) = +1" in out
+    assert "(1.12)" in out and "sign q̇_ε = +1" in out
 
 
 def test_cli_list(capsys):

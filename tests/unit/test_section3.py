@@ -24,7 +24,8 @@ def test_every_check_holds(sec3):
 
 
 def test_3_10_coefficient_erratum(sec3):
-    steps = [s for s in sec3 if s.label == "3.10"]
+    steps = sec3.only("3.10").steps           # (3.10) and its erratum, one label each
+    assert [s.label for s in steps] == ["3.10", "3.10 OCR"]
     assert steps[0].check.method in ("exact", "numeric") and steps[0].check.holds
     ocr = steps[1]
     assert ocr.check.method == "refutation"

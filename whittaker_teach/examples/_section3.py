@@ -8,6 +8,7 @@ import random
 import mpmath
 import sympy as sp
 
+from ..reading import TotalD
 from ..rewrite import collected
 from ..steps import Step, eq, notation
 from ..verify import DPS, Check, check_identity, check_zero
@@ -57,58 +58,60 @@ def section3_steps(red):
           Step("3.2", "the constraint: the runner does not slide sideways",
                [eq(yd, S._phi[y])])]
     printed = m / 2 * xd**2 * sec2 + J / 2 * thd**2 - k**2 * th**2 / 2
-    st.append(Step("3.3", "L~", [eq(sp.Symbol("Ltilde"), printed)], check_identity(
-        "3.3", "the printed L~ equals the derived one", printed, S._Ltilde, smp_t)))
+    st.append(Step("3.3", r"$\tilde L$", [eq(sp.Symbol("Ltilde"), printed)], check_identity(
+        "3.3", r"the printed $\tilde L$ equals the derived one", printed, S._Ltilde, smp_t)))
     printed = m / 2 * xd**2 * sec2 + J / 2 * thd**2 + k**2 * th**2 / 2
     st.append(Step("3.4", "the energy integral (1.11)", [eq(printed, h)], check_identity(
         "3.4", "the printed energy equals (1.11)", printed, S._energy(), smp_t)))
     printed = (2 * h - k**2 * th**2) / (m * sec2 + J * thp**2)
-    st.append(Step("3.5", "(1.13) solved: x-dot squared, theta' = d theta/dx",
+    st.append(Step("3.5", r"(1.13) solved: $\dot x^2$, with $\theta' = d\theta/dx$",
                    [eq(v**2, printed)], check_identity(
-        "3.5", "xdot^2 from (1.12) equals the printed form with J theta'^2 (the OCR prints "
-        "J thetadot^2, which mixes t and x)", red._vstar**2, printed, smp)))
+        "3.5", r"$\dot x^2$ from (1.12) equals the printed form with $J\theta'^2$ (the OCR "
+        r"prints $J\dot\theta^2$, which mixes $t$ and $x$)", red._vstar**2, printed, smp)))
     printed = v**2 / 2 * (m * sec2 + J * thp**2) - k**2 * th**2 / 2
-    st.append(Step("3.6", "Omega (1.6)", [eq(sp.Symbol("Omega"), printed)], check_identity(
-        "3.6", "the printed Omega equals (1.6)", printed, red._Omega, smp)))
+    st.append(Step("3.6", r"$\Omega$ (1.6)", [eq(sp.Symbol("Omega"), printed)], check_identity(
+        "3.6", r"the printed $\Omega$ equals (1.6)", printed, red._Omega, smp)))
     printed = s * sp.sqrt(2 * h - k**2 * th**2) * sp.sqrt(m * sec2 + J * thp**2)
-    st.append(Step("3.7", f"L* (1.16); the sign is the direction of travel, here {s:+d}",
+    st.append(Step("3.7", f"$L^*$ (1.16); the sign is the direction of travel, here ${s:+d}$",
                    [eq(notation("L*", "L^{*}"), printed)], check_identity(
-        "3.7", "the printed L* equals (1.16)", printed, red._Lstar, smp)))
-    st.append(Step("3.8", "y-dot* (1.23)", [eq(notation("ẏ*", r"\dot{y}^{*}"),
+        "3.7", r"the printed $L^*$ equals (1.16)", printed, red._Lstar, smp)))
+    st.append(Step("3.8", r"$\dot y^*$ (1.23)", [eq(notation("ẏ*", r"\dot{y}^{*}"),
                                                    red._qdstar[0])], check_identity(
-        "3.8", "d(xdot tan theta)/dxdot = tan theta", red._qdstar[0], sp.tan(th), smp)))
+        "3.8", r"$\partial(\dot x\tan\theta)/\partial\dot x = \tan\theta$", red._qdstar[0],
+        sp.tan(th), smp)))
     A = J * thp**2 + m * sec2
     R = 2 * h - k**2 * th**2
     printed = (red._D(s * sp.sqrt(R) * J * thp / sp.sqrt(A))
                + s * k**2 * th * sp.sqrt(A) / sp.sqrt(R))
-    shown = (sp.Derivative(s * sp.sqrt(R) * J * thp / sp.sqrt(A), x, evaluate=False)
+    shown = (TotalD(s * sp.sqrt(R) * J * thp / sp.sqrt(A), x)
              + s * k**2 * th * sp.sqrt(A) / sp.sqrt(R))
-    st.append(Step("3.9", "(1.26) for the sledge, after the m tan(theta)(1 + tan^2 theta) "
+    st.append(Step("3.9", r"(1.26) for the sledge, after the $m\tan\theta\,(1 + \tan^2\theta)$ "
                    "terms cancel", [eq(shown, 0)], check_identity(
-        "3.9", "the expanded form equals (1.26) (the OCR's last term lacks the root of "
-        "2h - k^2 theta^2 and the factor 1 + tan^2 theta)", printed, red._eqs[0], smp)))
+        "3.9", r"the form shown equals (1.26) (the OCR's last term lacks the root of "
+        r"$2h - k^2\theta^2$ and the factor $1 + \tan^2\theta$)", printed, red._eqs[0], smp)))
     qpp = red._tidy_accelerations()[thpp]
     cleared = collected(J * R * (thpp - qpp), [thpp, thp])
     printed = J * R * thpp + J * (-R * sp.tan(th) + k**2 * th) * thp**2 + m * k**2 * th * sec2
-    st.append(Step("3.10", "(1.26) cleared of denominators: J (2h - k^2 theta^2) (theta'' - "
-                   "theta''(1.26))", [eq(cleared, 0)], check_identity(
-        "3.10", "the cleared equation equals the printed (3.10) with m k^2 theta (1 + tan^2 theta)",
+    st.append(Step("3.10", r"(1.26) cleared of denominators: $J(2h - k^2\theta^2)\,(\theta'' "
+                   r"- \theta''_{(1.26b)})$", [eq(cleared, 0)], check_identity(
+        "3.10", r"the cleared equation equals the printed (3.10) with "
+        r"$mk^2\theta\,(1 + \tan^2\theta)$",
         cleared, printed, smp)))
     ocr = printed - m * k**2 * th * sec2 + m * k * th * sec2
-    st.append(Step("3.10", "erratum: the OCR's coefficient m k theta", [eq(ocr, 0)],
-                   _refuted("3.10 OCR", "the OCR form with m k theta (1 + tan^2 theta) is not "
-                            "satisfied by the solutions of (1.26)", ocr.xreplace({thpp: qpp}),
+    st.append(Step("3.10 OCR", r"erratum: the OCR's coefficient $mk\theta$", [eq(ocr, 0)],
+                   _refuted("3.10 OCR", r"the OCR form with $mk\theta\,(1 + \tan^2\theta)$ is "
+                            "not satisfied by the solutions of (1.26)", ocr.xreplace({thpp: qpp}),
                             smp)))
     F = sp.sqrt((-k**2 * th**2 + 2 * h - m * C**2) / J) / (C * sp.cos(th))
     along = {thp: F, thpp: F.diff(th) * F}
-    st.append(Step("3.11", "a first integral of (3.10), C a constant",
+    st.append(Step("3.11", "a first integral of (3.10), $C$ a constant",
                    [eq(thp, F)], check_zero(
-        "3.11", "theta' = F(theta), theta'' = F'(theta) F satisfy (3.10) for every C",
+        "3.11", r"$\theta' = F(\theta)$, $\theta'' = F'(\theta)\,F$ satisfy (3.10) for every $C$",
         printed.xreplace(along), smp_c)))
     integral = R / (m + J * thp**2 * sp.cos(th)**2)
-    st.append(Step("3.11", "equivalently C^2 = (2h - k^2 theta^2)/(m + J theta'^2 cos^2 theta) "
-                   "is constant along (1.26)", [eq(C**2, integral)], check_zero(
-        "3.11", "d/dx of the integral vanishes on the solutions of (1.26)",
+    st.append(Step("3.11a", r"equivalently $C^2 = (2h - k^2\theta^2)/(m + J\theta'^2\cos^2"
+                   r"\theta)$ is constant along (1.26)", [eq(C**2, integral)], check_zero(
+        "3.11a", "$d/dx$ of the integral vanishes on the solutions of (1.26)",
         red._D(integral).xreplace({thpp: qpp}), smp)))
     xdot_c = red._vstar.xreplace({thp: F})
     st.append(Step("3.12", "(3.11) in (3.5)", [eq(xd, C * sp.cos(th))], check_identity(
@@ -118,15 +121,15 @@ def section3_steps(red):
         "3.13", "xdot tan theta = C sin theta", (s * C * sp.cos(th)) * sp.tan(th),
         s * C * sp.sin(th), smp_c)))
     thdot = F * s * C * sp.cos(th)
-    st.append(Step("3.14", "theta-dot = theta' x-dot (the OCR prints theta for theta-dot), "
-                   "and its derivative", [eq(thd, thdot), eq(S.qdd[S.coordinates[1]],
+    st.append(Step("3.14", r"$\dot\theta = \theta'\dot x$ (the OCR prints $\theta$ for "
+                   r"$\dot\theta$), and its derivative", [eq(thd, thdot), eq(S.qdd[S.coordinates[1]],
                                                                    -k**2 / J * th)],
                    check_identity(
         "3.14", "d(thetadot)/dtheta * thetadot = -k^2 theta / J, as (1.4) gives in time",
         [thdot.diff(th) * thdot, S._accelerations()[S.qdd[S.coordinates[1]]]],
         [-k**2 * th / J, -k**2 * th / J], smp_c)))
     sol = a * sp.cos(k / sp.sqrt(J) * t + phi)
-    st.append(Step("3.15", "the motion in time; h = m C^2/2 + k^2 a^2/2",
+    st.append(Step("3.15", "the motion in time; $h = mC^2/2 + k^2a^2/2$",
                    [eq(th, sol), eq(h, m * C**2 / 2 + k**2 * a**2 / 2)], check_zero(
         "3.15", "theta(t) solves (3.14), and thetadot = 0 at theta = a when h = m C^2/2 + "
         "k^2 a^2/2", [sol.diff(t, 2) + k**2 / J * sol,

@@ -1,0 +1,89 @@
+"""Reading forms: each compact form is checked against the library's form, and a wrong
+one is reported as not holding."""
+
+import pytest
+import sympy as sp
+
+import whittaker_teach as wt
+from whittaker_teach import reading as R
+from whittaker_teach.nielsen import nielsen
+from whittaker_teach.verify import check_zero
+
+
+@pytest.fixture(scope="module", params=["sledge", "offset_sleigh", "kepler", "charged_particle"])
+def red(request):
+    ex = wt.examples.get(request.param)
+    return ex.build().reduce(ex.coordinate, +1)
+
+
+FORMS = {
+    "1.12": (lambda r: [R.velocity_form(r)], lambda r: [r._vstar]),
+    "1.16": (lambda r: [R.lstar_form(r)], lambda r: [r._Lstar]),
+    "1.26a": (R.momentum_forms, lambda r: r._Pstar),
+    "1.26": (R.whittaker_forms, lambda r: r._eqs),
+    "2.1": (lambda r: [R.total_derivative_form(r)],
+            lambda r: [nielsen(r)["2.1"]]),
+    "2.4": (R.nielsen_forms, lambda r: nielsen(r)["2.4"]),
+}
+
+
+@pytest.mark.parametrize("label", list(FORMS))
+def test_reading_form_equals_library(red, label):
+    shown, library = FORMS[label]
+    forms, lib = shown(red), list(library(red))
+    if not lib:
+        pytest.skip("no dependent coordinate")
+    assert R.check_reading(label, "reading form", forms, lib, red).holds is True
+
+
+@pytest.mark.parametrize("label", list(FORMS))
+def test_wrong_reading_form_is_refused(red, label):
+    shown, library = FORMS[label]
+    forms, lib = shown(red), list(library(red))
+    if not lib:
+        pytest.skip("no dependent coordinate")
+    wrong = [forms[0] * sp.Rational(11, 10) + red.h] + forms[1:]   # deliberately wrong
+    chk = R.check_reading(label, "a wrong reading form", wrong, lib, red)
+    assert chk.holds is False and chk.max_residual > 1e-6
+
+
+def test_cleared_form_vanishes_on_the_solved_acceleration(red):
+    acc = red._tidy_accelerations()
+    for cleared in R.cleared_forms(red):
+        chk = check_zero("1.26b", "cleared", cleared.xreplace(acc), red._sample)
+        assert chk.holds is True
+        wrong = check_zero("1.26b", "cleared, wrong q''", cleared, red._sample)
+        assert wrong.holds is False
+
+
+def test_steps_carry_the_reading_checks(red):
+    for lab in ("1.12", "1.16", "1.26", "1.26b", "2.1", "2.4"):
+        step = red.steps[lab]
+        assert step.check is not None and step.check.holds is True, lab
+        assert "form shown" in step.check.claim or lab == "1.26b"
+
+
+def test_sledge_reading_forms_are_the_papers(sledge_red):
+    """(1.26) is (3.9): d/dx(J theta' sqrt(R)/sqrt(A)) + k^2 theta sqrt(A)/sqrt(R);
+    (1.16) is (3.7), with m (1 + tan^2 theta) factored."""
+    (form,) = R.whittaker_forms(sledge_red)
+    terms = sp.Add.make_args(form)
+    assert len(terms) == 2 and any(isinstance(t, R.TotalD) for t in terms)
+    L = R.lstar_form(sledge_red)
+    th = [s for s in L.free_symbols if s.name == "theta"][0]
+    assert (1 + sp.tan(th)**2) in L.atoms(sp.Add)
+
+
+def test_powers_combined_and_tidy():
+    a, b = sp.symbols("a b")
+    A = a**2 + b
+    e = sp.sqrt(A) * sp.Mul(sp.expand(A), a, evaluate=False)
+    assert R.powers_combined(e) == a * A**sp.Rational(3, 2)
+    t = R.tidy(a * (2 * sp.tan(b)**2 + 2) / 2)
+    assert t == a * (sp.tan(b)**2 + 1)
+
+
+def test_total_derivative_prints_d_dx():
+    x, f = sp.symbols("x f")
+    assert sp.latex(R.TotalD(f, x)) == r"\frac{d}{d x}\left(f\right)"
+    assert "d/dx" in sp.pretty(R.TotalD(f, x), use_unicode=True)

@@ -1,0 +1,206 @@
+"""Reading forms: each result in the compact form the paper prints, for the system at hand.
+
+The library derives its results in whatever form the derivation produces (a
+long sum, after the chain rule).  The paper prints them compactly: L* as a
+product of two roots (1.16)/(3.7), the generalized Whittaker equations as
+d/dq_eps of a momentum minus a force (1.26)/(3.9), the reduced equation
+cleared of denominators (3.10), the Nielsen form (2.4) as differences of
+derivatives of L*.  Here each such form is built from the pieces (each piece
+tidied by targeted rewrites: :func:`tidy`), and its equality with the
+library's form is checked like every other identity (:func:`check_reading`):
+a form shown is a claim, never an unchecked re-typing.
+
+>>> import whittaker_teach as wt
+>>> red = wt.examples.sledge().reduce("x")
+>>> (form,) = whittaker_forms(red)            # (3.9): the sledge's (1.26), read
+>>> [type(t).__name__ for t in sp.Add.make_args(form)]
+['Mul', 'TotalD']
+>>> check_reading("1.26", "the form shown equals (1.26)", [form], red._eqs, red).holds
+True
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from .rewrite import collected, pythagoras
+from .verify import check_identity
+
+__all__ = ["TotalD", "powers_combined", "tidy", "evaluate", "check_reading", "velocity_form",
+           "lstar_form", "momentum_forms", "whittaker_forms", "cleared_forms", "nielsen_forms",
+           "total_derivative_form"]
+
+
+class TotalD(sp.Function):
+    """d/dx of an expression along a path, left unevaluated for display:
+    ``TotalD(f, x)`` prints as d/dx (f) (SymPy's ``Derivative`` of an expression in
+    several symbols prints as a partial derivative)."""
+
+    nargs = 2
+    #: the renderer breaks a long argument over lines inside d/dx( ... )
+    is_total_derivative = True
+
+    def _latex(self, printer):
+        f, x = self.args
+        return (rf"\frac{{d}}{{d {printer._print(x)}}}\left({printer._print(f)}\right)")
+
+    def _pretty(self, printer):
+        from sympy.printing.pretty.stringpict import prettyForm
+        f, x = self.args
+        body = printer._print(f)
+        body = prettyForm(*body.parens())
+        d = prettyForm(f"d/d{sp.pretty(x, use_unicode=True)}")
+        return prettyForm(*d.right(body))
+
+    def _sympystr(self, printer):
+        return f"d/d{self.args[1]}({printer._print(self.args[0])})"
+
+
+def powers_combined(expr):
+    """In every product, powers of the same base (equal after ``expand``) are merged:
+    sqrt(A)*A -> A**(3/2).  Exact: x**a * x**b = x**(a + b) for every base with the
+    principal branch.
+
+    >>> a, b = sp.symbols("a b")
+    >>> A = a**2 + b
+    >>> powers_combined(sp.sqrt(A) * sp.Mul(A, 1, evaluate=False) * a)
+    a*(a**2 + b)**(3/2)
+    >>> powers_combined(sp.sqrt(a + b) / sp.sqrt(a - b))      # different bases: unchanged
+    sqrt(a + b)/sqrt(a - b)
+    """
+    def merge(m):
+        groups, order = {}, []
+        for f in sp.Mul.make_args(m):
+            b, e = f.as_base_exp()
+            key = sp.expand(b) if isinstance(b, sp.Add) else b
+            if key not in groups:
+                order.append(key)
+                groups[key] = [b, sp.S.Zero]
+            groups[key][1] += e
+        if len(order) == len(sp.Mul.make_args(m)):
+            return m
+        return sp.Mul(*[sp.Pow(groups[k][0], groups[k][1]) for k in order])
+    return expr.replace(lambda e: isinstance(e, sp.Mul), merge)
+
+
+def tidy(expr, symbols=()):
+    """The readable form of one piece, without expanding it: every polynomial factor
+    (a sum free of roots) collected on ``symbols`` with factored coefficients
+    (``rewrite.collected``), sin^2 + cos^2 = 1, powers of the same base merged."""
+    def factor_of(f):
+        if isinstance(f, sp.Pow) and isinstance(f.base, sp.Add) and f.exp.is_Integer:
+            return sp.Pow(factor_of(f.base), f.exp)
+        if isinstance(f, sp.Add) and all(p.exp.is_Integer for p in f.atoms(sp.Pow)):
+            return collected(f, list(symbols))
+        return f
+
+    def term(t):
+        return sp.Mul(*[factor_of(f) for f in sp.Mul.make_args(t)])
+    expr = sp.sympify(expr)
+    if isinstance(expr, sp.Add) and all(p.exp.is_Integer for p in expr.atoms(sp.Pow)):
+        return powers_combined(factor_of(expr))             # a polynomial: collect it whole
+    return powers_combined(pythagoras(sp.Add(*[term(t) for t in sp.Add.make_args(expr)])))
+
+
+def evaluate(expr, red):
+    """``expr`` with every :class:`TotalD` carried out (``red._D``: d/dq_eps along a path)."""
+    return expr.replace(lambda e: isinstance(e, TotalD), lambda e: red._D(e.args[0]))
+
+
+def check_reading(label, claim, shown, library, red, sample=None):
+    """Check that the reading forms ``shown`` (a list) equal the library's ``library``:
+    exactly by ``expand`` when cheap, else at random admissible points (40 digits)."""
+    return check_identity(label, claim, [evaluate(s, red) for s in shown], list(library),
+                          sample or red._sample)
+
+
+def _primes(red):
+    return list(red._qp.values())
+
+
+def velocity_form(red):
+    """(1.12): qdot_eps = s sqrt(2 (h + A0) / (2 A2)), numerator and denominator tidied."""
+    A2, _, A0 = red._A
+    num = sp.factor(sp.expand(2 * (red.h + A0)))
+    den = tidy(sp.expand(2 * A2), _primes(red))
+    return red.direction * sp.sqrt(num) / sp.sqrt(den)
+
+
+def lstar_form(red):
+    """(1.16)/(3.7): L* = s sqrt(2 (h + A0)) sqrt(2 A2) + A1, each part tidied."""
+    A2, A1, A0 = red._A
+    qp = _primes(red)
+    return (red.direction * sp.sqrt(sp.factor(sp.expand(2 * (red.h + A0))))
+            * sp.sqrt(tidy(sp.expand(2 * A2), qp)) + tidy(A1, qp))
+
+
+def momentum_forms(red):
+    """(dL/dqdot_dep)* of (1.26), one per dependent coordinate, tidied."""
+    return [tidy(P, _primes(red)) for P in red._Pstar]
+
+
+def _pieces(red, c):
+    S, Ls = red.system, red._Lstar
+    qp, q, x = red._qp[c], S.q[c], S.q[red._eps]
+    pr = _primes(red)
+    return S, Ls, qp, q, x, pr
+
+
+def whittaker_forms(red):
+    """(1.26)/(3.9), one per q_nu: d/dq_eps(dL*/dq'_nu) - dL*/dq_nu
+    - sum_beta (dL/dqdot_beta)* (d/dq_eps(dqdot*_beta/dq'_nu) - dqdot*_beta/dq_nu),
+    every derivative carried out and tidied, the d/dq_eps left to read."""
+    out = []
+    for c in red._nus:
+        S, Ls, qp, q, x, pr = _pieces(red, c)
+        e = TotalD(tidy(Ls.diff(qp), pr), x) - tidy(Ls.diff(q), pr)
+        for P, qs in zip(red._Pstar, red._qdstar):
+            # - P (d/dx(dq*/dq') - dq*/dq), written term by term so that equal terms of
+            # opposite sign cancel as built (the sledge's m tan(theta)(1 + tan^2 theta))
+            inner, P = qs.diff(qp), tidy(P, pr)
+            e += P * tidy(qs.diff(q), pr)
+            if inner != 0:
+                e -= P * TotalD(tidy(inner, pr), x)
+        out.append(e)
+    return out
+
+
+def cleared_forms(red):
+    """(3.10): each q''_nu = N/D of (1.26) cleared of denominators, D q''_nu - N,
+    collected in q''_nu and the q'."""
+    out = []
+    acc = red._tidy_accelerations()
+    for c in red._nus:
+        a = red._qpp[c]
+        num, den = sp.fraction(sp.together(acc[a]))
+        out.append(powers_combined(collected(den * a - num, [a] + _primes(red))))
+    return out
+
+
+def total_derivative_form(red):
+    """(2.1): dL*/dq_eps = sum_nu (dL*/dq'_nu q''_nu + dL*/dq_nu q'_nu) + dL*/dq_eps,
+    the partial derivatives tidied."""
+    S, Ls, pr = red.system, red._Lstar, _primes(red)
+    x = S.q[red._eps]
+    terms = [tidy(Ls.diff(x), pr)]
+    for c in red._nus:
+        terms += [tidy(Ls.diff(red._qp[c]), pr) * red._qpp[c],
+                  tidy(Ls.diff(S.q[c]), pr) * red._qp[c]]
+    return sp.Add(*terms)
+
+
+def nielsen_forms(red):
+    """(2.4), one per q_nu: d(dL*/dq_eps)/dq'_nu - 2 dL*/dq_nu
+    - sum_beta (dL/dqdot_beta)* (d(dqdot*_beta/dq_eps)/dq'_nu - 2 dqdot*_beta/dq_nu),
+    each piece tidied."""
+    from .nielsen import nielsen
+    dL = nielsen(red)["2.1"]
+    out = []
+    for c in red._nus:
+        S, Ls, qp, q, x, pr = _pieces(red, c)
+        e = tidy(dL.diff(qp), pr + [red._qpp[c]]) - 2 * tidy(Ls.diff(q), pr)
+        for P, qs in zip(red._Pstar, red._qdstar):
+            P = tidy(P, pr)
+            e += 2 * P * tidy(qs.diff(q), pr) - P * tidy(red._D(qs).diff(qp), pr)
+        out.append(e)
+    return out
