@@ -28,6 +28,7 @@ each exercise (about a second), not on import.
 from __future__ import annotations
 
 from .feedback import Feedback
+from .limits import TooExpensive
 
 __all__ = ["check", "exercises", "parts", "Feedback"]
 
@@ -56,11 +57,32 @@ def check(exercise_id, answer, part=None):
     answered yet".
     """
     try:
-        return _check(exercise_id, answer, part)
-    except Exception as exc:  # noqa: BLE001 - a checker must answer, whatever it is given
-        return Feedback(False, f"The checker could not check this answer ({type(exc).__name__}: "
-                        f"{str(exc)[:200]}); please report it", str(exercise_id)[:40],
-                        part if isinstance(part, str) else None, "invalid")
+        feedback = _check(exercise_id, answer, part)
+    except (Exception, TooExpensive) as exc:  # noqa: BLE001 - a checker must answer
+        where = (exercise_id[:40] if isinstance(exercise_id, str) else "",
+                 part[:40] if isinstance(part, str) else None)
+        if isinstance(exc, TooExpensive):
+            feedback = Feedback(False, "This answer is too expensive to check; simplify it.",
+                                *where, "invalid")
+        else:
+            feedback = Feedback(False, "The checker could not check this answer "
+                                f"({type(exc).__name__}); please report it", *where, "invalid")
+    _record(feedback, answer)
+    return feedback
+
+
+def _record(feedback, answer):
+    """With WHITTAKER_TEACH_CHECK_LOG set (by ``grade``), append the result as a JSON line."""
+    import os
+    path = os.environ.get("WHITTAKER_TEACH_CHECK_LOG")
+    if not path:
+        return
+    from .grade import record_line
+    try:
+        with open(path, "a", encoding="utf-8") as out:
+            out.write(record_line(feedback, answer) + "\n")
+    except OSError:
+        pass
 
 
 def _check(exercise_id, answer, part):

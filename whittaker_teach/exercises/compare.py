@@ -37,6 +37,8 @@ from dataclasses import dataclass, field
 import mpmath
 import sympy as sp
 
+from .limits import TOO_EXPENSIVE, TooExpensive
+
 __all__ = ["Domain", "Verdict", "compare", "depends_on"]
 
 DPS = 30
@@ -93,15 +95,25 @@ class Domain:
         return pt
 
     def sample(self, rng, n=POINTS):
+        """n admissible points, spread over every range (Latin hypercube batches).
+
+        Each batch of n candidates takes, for each symbol, one value from
+        each of n equal slices of its range, so that the points reach the
+        ends of every range (an angle over its full period, e up to its
+        largest stated value) instead of clustering by chance.
+        """
         pts = []
-        for _ in range(200 * n):
-            pt = {s: mpmath.mpf(rng.uniform(lo, hi)) for s, (lo, hi) in
-                  sorted(self.ranges.items(), key=lambda kv: str(kv[0]))}
-            self.complete(pt)
-            if self.admissible(pt):
-                pts.append(pt)
-                if len(pts) == n:
-                    return pts
+        items = sorted(self.ranges.items(), key=lambda kv: str(kv[0]))
+        for _ in range(200):
+            strata = {s: rng.sample(range(n), n) for s, _ in items}
+            for i in range(n):
+                pt = {s: mpmath.mpf(lo + (hi - lo) * (strata[s][i] + rng.random()) / n)
+                      for s, (lo, hi) in items}
+                self.complete(pt)
+                if self.admissible(pt):
+                    pts.append(pt)
+                    if len(pts) == n:
+                        return pts
         raise RuntimeError("the exercise's domain has too few admissible points")
 
 
@@ -112,30 +124,162 @@ class Verdict:
 
 
 class _Fn:
-    """An expression as a function of a point (dict), at DPS digits; None where undefined."""
+    """An expression as a function of a point (dict), at DPS digits; None where undefined.
+
+    The expression is compiled once into a list of steps (equal subexpressions
+    shared), evaluated with mpmath and guarded: a step whose value would be
+    beyond 1e300 (``exp(exp(exp(100)))``, ``2**(10**9*theta)``) is undefined
+    at that point (and ``huge`` is set) instead of being computed, so that no
+    evaluation can run away.
+    """
 
     def __init__(self, expr, syms):
         self.expr = expr
-        self.syms = syms
-        try:
-            self._f = sp.lambdify(syms, expr, modules="mpmath")
-        except Exception:  # noqa: BLE001 - a printer gap: fall back to evalf
-            self._f = None
+        self.syms = list(syms)
+        self.huge = False
+        self.steps = []
+        index = {}
+        pos = {s: i for i, s in enumerate(self.syms)}
+
+        def visit(e):
+            j = index.get(e)
+            if j is not None:
+                return j
+            if e.is_Symbol:
+                step = ("symbol", pos[e]) if e in pos else ("unknown", e)
+            elif e.is_Number or e.is_NumberSymbol or e is sp.I:
+                with mpmath.workdps(DPS):
+                    step = ("const", mpmath.mpmathify(complex(e)) if e.has(sp.I)
+                            else mpmath.mpf(e.evalf(DPS + 5)))
+            else:
+                step = (type(e), [visit(a) for a in e.args], e)
+            index[e] = len(self.steps)
+            self.steps.append(step)
+            return index[e]
+
+        self.out = visit(expr)
 
     def __call__(self, pt):
+        vals = [None] * len(self.steps)
         with mpmath.workdps(DPS):
             try:
-                if self._f is not None:
-                    v = self._f(*[pt[s] for s in self.syms])
-                else:
-                    v = sp.N(self.expr.xreplace({s: sp.Float(pt[s], DPS) for s in self.syms}),
-                             DPS)
-                v = mpmath.mpmathify(complex(v) if isinstance(v, sp.Basic) else v)
-            except Exception:  # noqa: BLE001 - undefined at this point
+                for i, step in enumerate(self.steps):
+                    kind = step[0]
+                    if kind == "symbol":
+                        v = pt[self.syms[step[1]]]
+                    elif kind == "const":
+                        v = step[1]
+                    elif kind == "unknown":
+                        return None
+                    else:
+                        v = _apply(kind, [vals[j] for j in step[1]], step[2])
+                    if abs(v) > _HUGE:
+                        raise _Huge()
+                    vals[i] = v
+            except _Huge:
+                self.huge = True
                 return None
+            except (ZeroDivisionError, ValueError, TypeError, OverflowError, ArithmeticError):
+                return None
+            v = mpmath.mpmathify(vals[self.out])
             if not (mpmath.isfinite(mpmath.re(v)) and mpmath.isfinite(mpmath.im(v))):
                 return None
             return mpmath.mpc(v)
+
+
+class _Huge(Exception):
+    pass
+
+
+_HUGE = mpmath.mpf(10) ** 300
+_EXP_MAX = 690            # exp(690) ~ 1e300
+
+
+def _exp(z):
+    if mpmath.re(z) > _EXP_MAX:
+        raise _Huge()
+    if mpmath.re(z) < -10**5:
+        return mpmath.mpf(0)
+    return mpmath.exp(z)
+
+
+def _pow(b, e):
+    if e == int(mpmath.re(e)) and mpmath.im(e) == 0 and abs(e) <= 1000:
+        n = int(mpmath.re(e))
+        if n < 0 and b == 0:
+            raise ZeroDivisionError
+        return b ** n
+    if e == mpmath.mpf(0.5):
+        return mpmath.sqrt(b)
+    if b == 0:
+        if mpmath.re(e) > 0:
+            return mpmath.mpf(0)
+        raise ZeroDivisionError
+    return _exp(e * mpmath.log(b))
+
+
+def _fn1(f):
+    return lambda args, e: f(args[0])
+
+
+def _cosh(z):
+    return (_exp(z) + _exp(-z)) / 2
+
+
+def _sinh(z):
+    return (_exp(z) - _exp(-z)) / 2
+
+
+def _reciprocal(f):
+    def g(args, e):
+        v = f(args[0])
+        if v == 0:
+            raise ZeroDivisionError
+        return 1 / v
+    return g
+
+
+def _log(args, e):
+    if args[0] == 0:
+        raise ZeroDivisionError
+    if len(args) == 2:
+        return mpmath.log(args[0]) / mpmath.log(args[1])
+    return mpmath.log(args[0])
+
+
+def _real(z):
+    if mpmath.im(z) != 0:
+        raise ValueError("complex argument")
+    return mpmath.re(z)
+
+
+_APPLY = {
+    sp.Add: lambda args, e: mpmath.fsum(args),
+    sp.Mul: lambda args, e: mpmath.fprod(args),
+    sp.Pow: lambda args, e: _pow(*args),
+    sp.exp: _fn1(_exp), sp.log: _log,
+    sp.sin: _fn1(mpmath.sin), sp.cos: _fn1(mpmath.cos), sp.tan: _fn1(mpmath.tan),
+    sp.sec: _reciprocal(mpmath.cos), sp.csc: _reciprocal(mpmath.sin),
+    sp.cot: _reciprocal(mpmath.tan),
+    sp.asin: _fn1(mpmath.asin), sp.acos: _fn1(mpmath.acos), sp.atan: _fn1(mpmath.atan),
+    sp.atan2: lambda args, e: mpmath.atan2(_real(args[0]), _real(args[1])),
+    sp.sinh: _fn1(_sinh), sp.cosh: _fn1(_cosh), sp.tanh: _fn1(mpmath.tanh),
+    sp.Abs: _fn1(abs), sp.sign: _fn1(mpmath.sign),
+    sp.re: _fn1(mpmath.re), sp.im: _fn1(mpmath.im),
+}
+
+
+def _apply(kind, args, e):
+    f = _APPLY.get(kind)
+    if f is not None:
+        return f(args, e)
+    # a function without a rule here (from a library result): SymPy at these values
+    if isinstance(e, sp.Function) and len(args) <= 3:
+        v = e.func(*[sp.Float(a, DPS) if mpmath.im(a) == 0 else
+                     sp.Float(mpmath.re(a), DPS) + sp.I * sp.Float(mpmath.im(a), DPS)
+                     for a in args]).evalf(DPS)
+        return mpmath.mpmathify(complex(v))
+    raise ValueError(f"cannot evaluate {kind.__name__}")
 
 
 def _close(u, v):
@@ -318,6 +462,19 @@ def compare(answer, expected, domain, seed=0, sign_note="", tol=None):
     rel = TOL if tol is None else mpmath.mpf(tol)
     if all(a is not None and abs(a - e) <= rel * max(1, abs(a), abs(e)) for a, e in zip(A, E)):
         return Verdict(True)
+    if fa.huge:
+        return Verdict(False, "your answer takes values beyond 1e300 at some admissible values "
+                       f"of the symbols, where the right one does not: {TOO_EXPENSIVE}")
+    try:
+        return _explain(answer, expected, domain, sign_note, fa, fe, pts, A, E)
+    except TooExpensive:
+        return Verdict(False, "your answer is not equal to the right one (finding what kind of "
+                       "difference it is took too long)")
+
+
+def _explain(answer, expected, domain, sign_note, fa, fe, pts, A, E):
+    """The kind of difference between a wrong answer and the right one: a Verdict."""
+    syms = domain.symbols
     if any(a is None for a in A):
         return Verdict(False, "your answer cannot be evaluated at some admissible values of the "
                        "symbols (a division by zero or a logarithm of zero?), where the right "
@@ -373,7 +530,8 @@ def compare(answer, expected, domain, seed=0, sign_note="", tol=None):
                        f"by {abs(k)}"
             return Verdict(False, f"your answer is {_power_text(b, k)} times the right one, "
                            f"up to sign: {what}")
-    hint = _term_hint(answer, expected, fa, fe, syms, pts, domain)
+    hint = _term_hint(answer, expected, fa, fe, syms, pts, domain) or \
+        _inner_hint(answer, expected, fa, fe, syms, pts, domain)
     if hint:
         return Verdict(False, hint)
     with mpmath.workdps(DPS):
@@ -472,3 +630,79 @@ def _term_hint(answer, expected, fa, fe, syms, pts, domain):
                                                          zip(A, U, E)):
                     return "your answer has an extra term"
     return ""
+
+
+def _where(k):
+    if k == sp.Rational(1, 2):
+        return "inside the square root"
+    if k == -sp.Rational(1, 2):
+        return "inside the square root in the denominator"
+    if k == -1:
+        return "in the denominator"
+    return f"inside the factor raised to the power {k}"
+
+
+def _factors(expr):
+    """[(base, exponent)] of the factors of expr whose base is a sum."""
+    out = []
+    for f in sp.Mul.make_args(expr):
+        b, k = f.as_base_exp()
+        if isinstance(b, sp.Add) and b.free_symbols and k.is_Rational and (b, k) not in out:
+            out.append((b, k))
+    return out
+
+
+def _inner_hint(answer, expected, fa, fe, syms, pts, domain):
+    """Is the difference inside one factor (a square root, a denominator)? Say what it is there.
+
+    Looks for a factor (a sum under a power: sqrt(...), 1/(...)) of the
+    answer and one of the right answer, with the same power, such that the
+    answer is the right one with that factor replaced; then explains the
+    difference between the two sums (a wrong power of a symbol in a term, a
+    term with the wrong sign, a missing term).
+    """
+    mine, right = _factors(answer), _factors(expected)
+    with mpmath.workdps(DPS):
+        for bb, kb in mine:
+            for be, ke in right:
+                if kb != ke or bb == be:
+                    continue
+                fb, fbe = _Fn(bb, syms), _Fn(be, syms)
+                ok = True
+                for p in pts:
+                    a, e, u, w = fa(p), fe(p), fb(p), fbe(p)
+                    if None in (a, e, u, w) or abs(w) <= TOL or abs(e) <= TOL:
+                        ok = False
+                        break
+                    if not _close(a / e, _pow(u / w, mpmath.mpf(ke.p) / ke.q)):
+                        ok = False
+                        break
+                if not ok:
+                    continue
+                where = f"{_where(ke)} ({_shorten(bb)})"
+                inner = _term_hint(bb, be, fb, fbe, syms, pts, domain)
+                if not inner:
+                    def ratio(p, fb=fb, fbe=fbe):
+                        u, w = fb(p), fbe(p)
+                        return None if u is None or w is None or abs(w) <= TOL else u / w
+                    mono = _monomial(ratio, pts[0], pts, syms, domain)
+                    if mono is not None:
+                        inner = _monomial_text(*mono, what="that sum", ref="the right one")
+                if not inner:
+                    used = [str(s) for s in syms
+                            if depends_on(lambda p: _diff(fb, fbe, p), s, pts[0], pts, domain)]
+                    inner = "that sum is not the right one" + \
+                        (f"; the difference depends on {', '.join(used)}" if used else "")
+                inner = inner.replace("your answer", "that sum")
+                return f"the rest is right, but {where}: {inner}"
+    return ""
+
+
+def _diff(f, g, p):
+    a, b = f(p), g(p)
+    return None if a is None or b is None else a - b
+
+
+def _shorten(e, n=60):
+    text = sp.sstr(e)
+    return text if len(text) <= n else text[:n - 3] + "..."
