@@ -39,7 +39,7 @@ import sympy as sp
 
 from .limits import TOO_EXPENSIVE, TooExpensive
 
-__all__ = ["Domain", "Verdict", "compare", "depends_on"]
+__all__ = ["Domain", "Verdict", "compare", "equal", "depends_on"]
 
 DPS = 30
 TOL = mpmath.mpf(10) ** -10   # relative: exact forms agree to ~28 digits, floats to ~15
@@ -64,6 +64,7 @@ class Domain:
         self.symbols = sorted([*self.ranges, *self.derived], key=str)
         self._cond = None
         self._der = None
+        self._points = {}
 
     def _compiled(self):
         if self._cond is None:
@@ -93,6 +94,13 @@ class Domain:
             for s, base, fn in self._der:
                 pt[s] = mpmath.mpmathify(fn(*[pt[b] for b in base]))
         return pt
+
+    def points(self, seed, n=POINTS):
+        """The n sample points of a seed (kept: every check of a part uses the same)."""
+        key = (seed, n)
+        if key not in self._points:
+            self._points[key] = self.sample(random.Random(seed), n)
+        return [dict(p) for p in self._points[key]]
 
     def sample(self, rng, n=POINTS):
         """n admissible points, spread over every range (Latin hypercube batches).
@@ -151,6 +159,10 @@ class _Fn:
                 with mpmath.workdps(DPS):
                     step = ("const", mpmath.mpmathify(complex(e)) if e.has(sp.I)
                             else mpmath.mpf(e.evalf(DPS + 5)))
+            elif e.is_Pow and e.exp.is_Integer and abs(e.exp) <= 1000:
+                step = (_int_pow, [visit(e.base)], int(e.exp))
+            elif e.is_Pow and e.exp.is_Rational and e.exp.q == 2 and abs(e.exp) <= 1000:
+                step = (_half_pow, [visit(e.base)], int(e.exp.p))
             else:
                 step = (type(e), [visit(a) for a in e.args], e)
             index[e] = len(self.steps)
@@ -171,10 +183,10 @@ class _Fn:
                         v = step[1]
                     elif kind == "unknown":
                         return None
+                    elif kind is _int_pow or kind is _half_pow:
+                        v = kind(vals[step[1][0]], step[2])
                     else:
                         v = _apply(kind, [vals[j] for j in step[1]], step[2])
-                    if abs(v) > _HUGE:
-                        raise _Huge()
                     vals[i] = v
             except _Huge:
                 self.huge = True
@@ -183,6 +195,9 @@ class _Fn:
                 return None
             v = mpmath.mpmathify(vals[self.out])
             if not (mpmath.isfinite(mpmath.re(v)) and mpmath.isfinite(mpmath.im(v))):
+                return None
+            if abs(v) > _HUGE:
+                self.huge = True
                 return None
             return mpmath.mpc(v)
 
@@ -218,6 +233,28 @@ def _pow(b, e):
     return _exp(e * mpmath.log(b))
 
 
+def _int_pow(b, n):
+    if n < 0 and b == 0:
+        raise ZeroDivisionError
+    return b ** n
+
+
+def _half_pow(b, n):
+    """b**(n/2), the principal branch (as SymPy's)."""
+    r = mpmath.sqrt(b)
+    if n < 0 and r == 0:
+        raise ZeroDivisionError
+    return r ** n
+
+
+def _trig(f):
+    def g(args, e):
+        if abs(args[0]) > 10**8:     # argument reduction would need huge precision
+            raise _Huge()
+        return f(args[0])
+    return g
+
+
 def _fn1(f):
     return lambda args, e: f(args[0])
 
@@ -232,6 +269,8 @@ def _sinh(z):
 
 def _reciprocal(f):
     def g(args, e):
+        if abs(args[0]) > 10**8:
+            raise _Huge()
         v = f(args[0])
         if v == 0:
             raise ZeroDivisionError
@@ -258,12 +297,12 @@ _APPLY = {
     sp.Mul: lambda args, e: mpmath.fprod(args),
     sp.Pow: lambda args, e: _pow(*args),
     sp.exp: _fn1(_exp), sp.log: _log,
-    sp.sin: _fn1(mpmath.sin), sp.cos: _fn1(mpmath.cos), sp.tan: _fn1(mpmath.tan),
+    sp.sin: _trig(mpmath.sin), sp.cos: _trig(mpmath.cos), sp.tan: _trig(mpmath.tan),
     sp.sec: _reciprocal(mpmath.cos), sp.csc: _reciprocal(mpmath.sin),
     sp.cot: _reciprocal(mpmath.tan),
     sp.asin: _fn1(mpmath.asin), sp.acos: _fn1(mpmath.acos), sp.atan: _fn1(mpmath.atan),
     sp.atan2: lambda args, e: mpmath.atan2(_real(args[0]), _real(args[1])),
-    sp.sinh: _fn1(_sinh), sp.cosh: _fn1(_cosh), sp.tanh: _fn1(mpmath.tanh),
+    sp.sinh: _fn1(_sinh), sp.cosh: _fn1(_cosh), sp.tanh: _trig(mpmath.tanh),
     sp.Abs: _fn1(abs), sp.sign: _fn1(mpmath.sign),
     sp.re: _fn1(mpmath.re), sp.im: _fn1(mpmath.im),
 }
@@ -441,6 +480,37 @@ def _expanded_terms(expr, limit=30):
     return list(terms) if len(terms) <= limit else []
 
 
+_COMPILED = {}
+
+
+def _compiled(expr, syms):
+    """_Fn of a right answer, compiled once (answers are compiled at each check)."""
+    key = (expr, tuple(syms))
+    if key not in _COMPILED:
+        if len(_COMPILED) > 500:
+            _COMPILED.clear()
+        _COMPILED[key] = _Fn(expr, syms)
+    return _COMPILED[key]
+
+
+def equal(answer, expected, domain, seed=0, tol=None):
+    """Is answer equal to expected on the domain's sample points (no hint)?"""
+    syms = domain.symbols
+    pts = domain.points(seed)
+    fa, fe = _Fn(answer, syms), _compiled(expected, syms)
+    rel = TOL if tol is None else mpmath.mpf(tol)
+    n = 0
+    for p in pts:
+        e = fe(p)
+        if e is None:
+            continue
+        a = fa(p)
+        if a is None or abs(a - e) > rel * max(1, abs(a), abs(e)):
+            return False
+        n += 1
+    return n >= 3
+
+
 def compare(answer, expected, domain, seed=0, sign_note="", tol=None):
     """Compare two expressions of the domain's symbols: a :class:`Verdict`.
 
@@ -448,9 +518,8 @@ def compare(answer, expected, domain, seed=0, sign_note="", tol=None):
     number, such as where an integrator stopped, needs a looser one).
     """
     syms = domain.symbols
-    rng = random.Random(seed)
-    pts = domain.sample(rng)
-    fa, fe = _Fn(answer, syms), _Fn(expected, syms)
+    pts = domain.points(seed)
+    fa, fe = _Fn(answer, syms), _compiled(expected, syms)
     A = [fa(p) for p in pts]
     E = [fe(p) for p in pts]
     keep = [i for i, e in enumerate(E) if e is not None]

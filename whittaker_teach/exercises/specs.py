@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
-from .compare import _Fn, _close, compare, depends_on
+from .compare import _Fn, compare, depends_on, equal
 from .feedback import Feedback
 from .limits import TOO_EXPENSIVE, TooExpensive, time_budget
 from .parsing import _GREEK, AnswerError, article, plain_symbols, read_answer
@@ -183,7 +183,7 @@ def _check_expression(ex, part, answer, names, domain):
     seed = zlib.crc32(f"{ex.id}:{part.name}".encode())
     extra = sorted((s for s in expr.free_symbols if s not in part.variables), key=str)
     if extra:
-        pts = domain.sample(random.Random(seed), 4)
+        pts = domain.points(seed, 4)
         fn = _Fn(expr, domain.symbols)
         bad = [s for s in extra if depends_on(fn, s, pts[0], pts, domain)]
         if bad:
@@ -198,23 +198,26 @@ def _check_expression(ex, part, answer, names, domain):
     if verdict.ok:
         return Feedback(True, part.success or f"{part.what} is right.", ex.id, part.name)
     for wrong, message in part.wrong:
-        if compare(expr, wrong, domain, seed).ok:
+        if equal(expr, wrong, domain, seed):
             return Feedback(False, message, ex.id, part.name)
-    other = _other_part(ex, part, expr, domain, seed)
+    other = _other_part(ex, part, expr, domain, seed,
+                        terms=verdict.hint.startswith("your answer is not equal"))
     if other:
         return Feedback(False, other, ex.id, part.name)
     return Feedback(False, _sentence(verdict.hint) + ".", ex.id, part.name)
 
 
-def _other_part(ex, part, expr, domain, seed):
-    """Is the answer another part's answer, or does it carry a term of another part's?"""
+def _other_part(ex, part, expr, domain, seed, terms=True):
+    """Is the answer another part's answer, or (terms) does it carry a term of another part's?"""
     try:
         for name, other in ex.parts.items():
             if name == part.name or other.is_choice or not other.expected.free_symbols:
                 continue
-            if compare(expr, other.expected, domain, seed).ok:
+            if equal(expr, other.expected, domain, seed):
                 return (f"That is the answer to part {name!r} ({other.what}), not to this "
                         f"one: {part.what}.")
+        if not terms:
+            return ""
         diff = expr - part.expected
         for name, other in ex.parts.items():
             if name == part.name or other.is_choice or not other.expected.free_symbols:
@@ -224,8 +227,7 @@ def _other_part(ex, part, expr, domain, seed):
                 continue
             for t in terms:
                 for sign, what in ((1, "an extra term"), (-1, "a term missing")):
-                    if compare(diff, sign * t, domain, seed).ok and \
-                            not compare(diff, sign * other.expected, domain, seed).ok:
+                    if equal(diff, sign * t, domain, seed):
                         return (f"Your answer has {what}, one of the terms of part {name!r} "
                                 f"({other.what}): that term does not belong to "
                                 f"{part.what}." if sign == 1 else
