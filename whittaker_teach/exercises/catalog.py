@@ -62,7 +62,7 @@ def _projectile_path():
     x, y, yp, ypp, h, m, g, v0, alpha = (names[n] for n in
                                          "x y yprime yprimeprime h m g v0 alpha".split())
     red = wt.examples.projectile().reduce("x", +1)
-    dom = Domain({x: (-3.0, 3.0), y: (-1.0, 1.0), yp: SLOPE, ypp: (-1.0, 1.0), h: ENERGY,
+    dom = Domain({x: (0.0, 3.0), y: (-1.0, 1.0), yp: SLOPE, ypp: (-1.0, 1.0), h: ENERGY,
                   m: POSITIVE, g: POSITIVE, v0: POSITIVE, alpha: (0.001, 1.5707)},
                  conditions=(h - m * g * y,))
     path = x * sp.tan(alpha) - g * x**2 / (2 * v0**2 * sp.cos(alpha)**2)

@@ -14,7 +14,6 @@ options (``choices``).
 from __future__ import annotations
 
 import math
-import random
 import zlib
 from dataclasses import dataclass, field
 
@@ -22,7 +21,7 @@ import sympy as sp
 
 from .compare import _Fn, compare, depends_on, equal
 from .feedback import Feedback
-from .limits import TOO_EXPENSIVE, TooExpensive, time_budget
+from .limits import MAX_LENGTH, TOO_EXPENSIVE, TooExpensive, time_budget
 from .parsing import _GREEK, AnswerError, article, plain_symbols, read_answer
 
 __all__ = ["Exercise", "Part", "Names", "check_part"]
@@ -152,8 +151,11 @@ def _check_choice(ex, part, answer):
                     "(a string)", ex.id, part.name, "invalid")
 
 
-def check_part(ex, part, answer):
-    """Check one answer against one part: a :class:`Feedback`."""
+def check_part(ex, part, answer, max_length=None):
+    """Check one answer against one part: a :class:`Feedback`.
+
+    ``max_length``: of a string answer (default: the limit for typed answers).
+    """
     names, domain, _ = ex.build()
     if answer is None or answer is Ellipsis:
         what = part.listing() if part.is_choice else f"expected {part.what}"
@@ -163,15 +165,15 @@ def check_part(ex, part, answer):
         return _check_choice(ex, part, answer)
     try:
         with time_budget():
-            return _check_expression(ex, part, answer, names, domain)
+            return _check_expression(ex, part, answer, names, domain, max_length)
     except TooExpensive as exc:
         return Feedback(False, _sentence(str(exc) or TOO_EXPENSIVE) + ".", ex.id, part.name,
                         "invalid")
 
 
-def _check_expression(ex, part, answer, names, domain):
+def _check_expression(ex, part, answer, names, domain, max_length=None):
     try:
-        expr = names.resolve(read_answer(answer))
+        expr = names.resolve(read_answer(answer, max_length or MAX_LENGTH))
     except AnswerError as exc:
         return Feedback(False, _sentence(f"{exc}; {part.listing()}"), ex.id, part.name,
                         "invalid")
