@@ -609,6 +609,10 @@ def _explain(answer, expected, domain, sign_note, fa, fe, pts, A, E):
         return Verdict(False, f"your answer differs from the right one by a constant "
                        f"(yours minus the right one is {_nice(D[0])})")
 
+    part = _part_of_domain(answer, A, E, pts)
+    if part:
+        return Verdict(False, part)
+
     def diff(p):
         a, e = fa(p), fe(p)
         return None if a is None or e is None else a - e
@@ -652,6 +656,10 @@ def _term_hint(answer, expected, fa, fe, syms, pts, domain):
                 if any(abs(t) <= TOL for t in T):
                     continue
                 Q = [(a - e + t) / t for a, e, t in zip(A, E, T)]
+                if one and not all(_close(q, Q[0]) for q in Q):
+                    flip = _sign_flip(Q, pts, terms[subset[0]])
+                    if flip:
+                        return flip
                 if not all(_close(q, Q[0]) for q in Q):
                     continue
                 c = _nice(Q[0])
@@ -665,7 +673,15 @@ def _term_hint(answer, expected, fa, fe, syms, pts, domain):
                     f"{len(subset)} terms of your answer are"
                 return f"{what} {c} times what {'it' if one else 'they'} should be"
             for subset in _subsets(len(terms)):
+                if len(subset) > 4:          # up to four terms: the rest is too costly
+                    continue
                 one = len(subset) == 1
+                T = [mpmath.fsum(vals[j][i] for j in subset) for i in range(len(pts))]
+                if any(abs(t) <= TOL for t in T):
+                    continue
+                Q = [(a - e + t) / t for a, e, t in zip(A, E, T)]
+                if all(_close(v, 1) for v in Q):
+                    continue
                 ft = _Fn(sp.Add(*[terms[j] for j in subset]), syms)
 
                 def q(p, ft=ft):
@@ -673,9 +689,6 @@ def _term_hint(answer, expected, fa, fe, syms, pts, domain):
                     if a is None or e is None or tt is None or abs(tt) <= TOL:
                         return None
                     return (a - e + tt) / tt
-                Q = [q(p) for p in pts]
-                if any(v is None for v in Q) or all(_close(v, 1) for v in Q):
-                    continue
                 what = "one term of your answer" if one else f"{len(subset)} terms of your answer"
                 mono = _monomial(q, pts[0], pts, syms, domain)
                 if mono is not None:
@@ -708,14 +721,19 @@ def _where(k):
         return "inside the square root in the denominator"
     if k == -1:
         return "in the denominator"
+    if k == 1:
+        return "in the factor"
     return f"inside the factor raised to the power {k}"
 
 
 def _factors(expr):
-    """[(base, exponent)] of the factors of expr whose base is a sum."""
+    """[(base, exponent)] of the factors of expr whose base is a sum (not expr itself)."""
     out = []
-    for f in sp.Mul.make_args(expr):
+    factors = sp.Mul.make_args(expr)
+    for f in factors:
         b, k = f.as_base_exp()
+        if k == 1 and len(factors) == 1:
+            continue
         if isinstance(b, sp.Add) and b.free_symbols and k.is_Rational and (b, k) not in out:
             out.append((b, k))
     return out
@@ -775,3 +793,37 @@ def _diff(f, g, p):
 def _shorten(e, n=60):
     text = sp.sstr(e)
     return text if len(text) <= n else text[:n - 3] + "..."
+
+
+def _sign_flip(Q, pts, term):
+    """One term right at some points and of the wrong sign at others: say where."""
+    plus = [i for i, q in enumerate(Q) if _close(q, 1)]
+    minus = [i for i, q in enumerate(Q) if _close(q, -1)]
+    if not plus or not minus or len(plus) + len(minus) != len(Q):
+        return ""
+    p = pts[minus[0]]
+    at = ", ".join(f"{s} = {float(mpmath.re(p[s])):.3g}"
+                   for s in sorted(term.free_symbols, key=str) if s in p)
+    return ("one term of your answer has the right size but the wrong sign on part of the "
+            f"domain (for example at {at}), and is right elsewhere: check a root of a square "
+            "(sqrt(x**2) is |x|, sqrt(1 - sin(x)**2) is |cos(x)|) or the branch of an inverse "
+            "function (asin(sin(x)) is x only for |x| <= pi/2)")
+
+
+def _part_of_domain(answer, A, E, pts):
+    """Right at some sample points, wrong at others: say so, with a point where it is wrong."""
+    right = [i for i, (a, e) in enumerate(zip(A, E)) if _close(a, e)]
+    if not right or len(right) == len(A):
+        return ""
+    wrong = [i for i in range(len(A)) if i not in right][0]
+    p = pts[wrong]
+    branchy = set()
+    for f in answer.atoms(sp.Abs, sp.sign, sp.asin, sp.acos, sp.atan, sp.Pow):
+        if not f.is_Pow or (f.exp.is_Rational and not f.exp.is_Integer):
+            branchy |= f.free_symbols
+    shown = sorted(branchy or answer.free_symbols, key=str)[:4]
+    at = ", ".join(f"{s} = {float(mpmath.re(p[s])):.3g}" for s in shown if s in p)
+    return ("your answer is right at some admissible values and wrong at others (for example "
+            f"at {at}): it holds on only part of the domain the exercise states; check a root "
+            "of a square (sqrt(x**2) is |x|) or the branch of an inverse function (asin(sin(x)) "
+            "is x only for |x| <= pi/2)")

@@ -118,6 +118,9 @@ def _balance(text):
     for i, c in enumerate(text, 1):
         if c == "(":
             stack.append(i)
+            if len(stack) > MAX_DEPTH:
+                raise AnswerError(f"the answer is nested more than {MAX_DEPTH} levels deep; "
+                                  "simplify it")
         elif c == ")":
             if not stack:
                 raise AnswerError(f"the parenthesis closed at position {i} was never opened")
@@ -217,7 +220,8 @@ def parse_string(text, max_length=MAX_LENGTH):
         tree = ast.parse(code, mode="eval")
     except (SyntaxError, ValueError, TypeError, MemoryError, RecursionError, Exception):
         # not TooExpensive: a BaseException
-        raise AnswerError(f"could not read {text[:60]!r} as a formula: {_syntax(text)}") \
+        shown = text if len(text) <= 30 else text[:27] + "..."
+        raise AnswerError(f"could not read {shown!r} as a formula: {_syntax(text)}") \
             from None
     return _Builder().build(tree.body)
 

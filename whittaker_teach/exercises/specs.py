@@ -273,15 +273,10 @@ def _percent(got, want):
     """|got - want|/|want| as a percentage with two significant digits (never 0.00%).
 
     >>> _percent(1.0000001, 1.0), _percent(1.5, 1.0), _percent(1.0123, 1.0)
-    ('1.0e-05%', '50%', '1.2%')
+    ('0.000010%', '50%', '1.2%')
     """
     rel = abs(got - want) / abs(want) * 100
-    if rel >= 10:
-        text = f"{round(rel, 1 - int(math.floor(math.log10(rel)))):.0f}"
-    elif rel >= 1e-3:
-        text = f"{rel:.2g}"
-    else:
-        text = f"{rel:.1e}"
+    text = f"{rel:.{max(0, 1 - math.floor(math.log10(rel)))}f}"
     return text + "%"
 
 
