@@ -299,7 +299,7 @@ def _worker_main(argv):
     import resource
 
     import nbformat
-    from jupyter_client.manager import KernelManager
+    from jupyter_client.manager import AsyncKernelManager
     from nbclient import NotebookClient
     from nbclient.exceptions import CellTimeoutError, DeadKernelError
     nb_path, root, cell_timeout, memory, confine, result = argv[0], Path(argv[1]), \
@@ -310,10 +310,10 @@ def _worker_main(argv):
     for cell in nb.cells:
         if cell.cell_type == "code":
             cell.outputs = []
-    km = KernelManager(kernel_name=KERNEL_NAME, transport="ipc",
+    km = AsyncKernelManager(kernel_name=KERNEL_NAME, transport="ipc",
                        ip=str(root / "ctl" / "kernel"))
     client = NotebookClient(nb, km=km, timeout=cell_timeout, allow_errors=True,
-                            startup_timeout=60, kernel_name=KERNEL_NAME,
+                            startup_timeout=60, kernel_name=KERNEL_NAME, shutdown_kernel="immediate",
                             resources={"metadata": {"path": str(root / "work")}})
     failure = ""
     errors = []
