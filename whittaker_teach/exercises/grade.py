@@ -313,7 +313,8 @@ def _worker_main(argv):
     km = AsyncKernelManager(kernel_name=KERNEL_NAME, transport="ipc",
                        ip=str(root / "ctl" / "kernel"))
     client = NotebookClient(nb, km=km, timeout=cell_timeout, allow_errors=True,
-                            startup_timeout=60, kernel_name=KERNEL_NAME, shutdown_kernel="immediate",
+                            startup_timeout=60, kernel_name=KERNEL_NAME,
+                            shutdown_kernel="immediate",
                             resources={"metadata": {"path": str(root / "work")}})
     failure = ""
     errors = []
@@ -369,7 +370,7 @@ def _run(nb_path, cell_timeout, timeout, memory, confine):
                     "JUPYTER_DATA_DIR": str(ctl), "JUPYTER_RUNTIME_DIR": str(ctl),
                     "JUPYTER_CONFIG_DIR": str(ctl), "IPYTHONDIR": str(ctl / "ipython"),
                     "PYTHONPATH": os.pathsep.join(path), "PYTHONHASHSEED": "0",
-                    "WHITTAKER_TEACH_CHECK_LOG": str(work / LOG_NAME), "MPLBACKEND": "Agg",
+                    "WHITTAKER_TEACH_CHECK_LOG": str(ctl / LOG_NAME), "MPLBACKEND": "Agg",
                     "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1",
                     "http_proxy": "http://127.0.0.1:9", "https_proxy": "http://127.0.0.1:9",
                     "no_proxy": ""})
@@ -388,7 +389,7 @@ def _run(nb_path, cell_timeout, timeout, memory, confine):
             failure = f"timeout: the notebook ran longer than {timeout:g} s"
         finally:
             _kill(proc)
-        log = work / LOG_NAME
+        log = ctl / LOG_NAME
         lines = []
         if log.is_file() and not log.is_symlink():
             with open(log, "rb") as f:
