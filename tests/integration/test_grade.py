@@ -178,3 +178,21 @@ def test_the_command_line(tmp_path, package_path):
     rows = list(csv.reader(open(out, encoding="utf-8")))
     assert rows[1][:4] == ["a.ipynb", "", "", "False"] and "truncated" in rows[1][4]
     assert rows[2][:4] == ["b.txt", "", "", "False"] and "not a notebook" in rows[2][4]
+
+
+def test_recorded_answers_are_graded_as_they_were_checked():
+    """Every correct form of the unit tests (strings, SymPy objects from the library,
+    numbers of every kind) survives recording: the grader's re-check agrees."""
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "unit"))
+    import test_exercise_checks as cases
+
+    from whittaker_teach.exercises import check
+    from whittaker_teach.exercises.feedback import Feedback
+    for (ex, part), (good, bad) in sorted(cases.CASES.items()):
+        for spec in good + cases.MORE_GOOD.get((ex, part), []) + [b for b, _ in bad]:
+            answer = cases._answer(spec)
+            want = check(ex, answer, part=part).ok
+            rec = json.loads(grading.record_line(Feedback(False, "", ex, part, "invalid"),
+                                                 answer))
+            ok, message = grading._recheck(ex, part, rec)
+            assert ok == want, (ex, part, spec, message)

@@ -99,12 +99,13 @@ def _answer_text(answer):
                 return None
             text = sp.sstr(answer)
             return text if len(text) <= MAX_ANSWER_CHARS else None
-    try:
-        from fractions import Fraction
-        if isinstance(answer, Fraction):
-            return f"Rational({answer.numerator}, {answer.denominator})"
-    except ImportError:  # pragma: no cover
-        pass
+    import numbers
+    from fractions import Fraction
+    if isinstance(answer, Fraction):
+        return f"Rational({answer.numerator}, {answer.denominator})"
+    if isinstance(answer, numbers.Number) and not isinstance(answer, complex):  # Decimal
+        text = str(answer)
+        return text if len(text) < 100 else None
     return None
 
 

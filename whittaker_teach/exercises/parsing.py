@@ -305,9 +305,12 @@ class _Builder:
         if name not in ALLOWED_FUNCTIONS:
             raise AnswerError(f"the answer calls {name}(...): calls of functions other than the "
                               f"maths functions ({_SOME_FUNCTIONS}) are not allowed")
-        args = [self.build(a, depth + 1) for a in node.args]
-        if name in ("Derivative", "diff"):
+        if name in ("Derivative", "diff"):       # Derivative(f, (x, 2)) as SymPy prints it
+            args = [tuple(self.build(b, depth + 2) for b in a.elts)
+                    if isinstance(a, ast.Tuple) and len(a.elts) == 2 else self.build(a, depth + 1)
+                    for a in node.args]
             return _derivative(name, args)
+        args = [self.build(a, depth + 1) for a in node.args]
         if name == "Rational":
             if len(args) != 2 or not all(a.is_Integer for a in args) or args[1] == 0:
                 raise AnswerError("Rational(p, q) takes two integers, q not 0")
@@ -386,12 +389,19 @@ def _bounded_number(e):
 
 def _derivative(name, args):
     """Derivative(f, x[, n]) / diff(f, x, ...), of order at most MAX_DERIVATIVE_ORDER."""
-    if len(args) < 2:
+    if len(args) < 2 or isinstance(args[0], tuple):
         raise AnswerError(f"{name}(f, x) takes an expression and a variable")
     f, rest = args[0], args[1:]
     spec, order = [], 0
     for a in rest:
-        if a.is_Symbol:
+        if isinstance(a, tuple):
+            s, n = a
+            if not (s.is_Symbol and n.is_Integer and n > 0):
+                raise AnswerError(f"{name}(f, (x, n)): x must be a symbol and n a positive "
+                                  "integer")
+            order += int(min(n, 10**6))
+            spec.append([s, int(min(n, 10**6))])
+        elif a.is_Symbol:
             spec.append([a, 1])
             order += 1
         elif a.is_Integer and spec and a > 0:
