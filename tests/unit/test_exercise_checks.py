@@ -325,10 +325,10 @@ MORE_GOOD = {
 # (an angle beyond pi/2, a hyperbola, a negative slope or energy), and others
 DOMAIN = {
     ("projectile-path", "L_star"): ("DOM:y", "complex values"),
-    ("projectile-path", "y_pp"): ("DOM:y", "in the denominator"),
+    ("projectile-path", "y_pp"): ("DOM:y", "part of the domain"),
     ("projectile-path", "path"): ("x*tan(asin(sin(2*alpha))/2) - g*x^2/(2*v0^2*cos(alpha)^2)",
                                   "alpha"),
-    ("kepler-orbit", "L_star"): ("DOM:h", "square root"),
+    ("kepler-orbit", "L_star"): ("DOM:h", "part of the domain"),
     ("kepler-orbit", "r_pp"): ("DOM:h", "h"),
     ("kepler-orbit", "h"): ("-m*mu*Abs(1 - e^2)/(2*p)", "e"),
     ("omega-and-energy", "Omega"): ("thetadot^2*(A + m*R^2 + C*phi'^2)/2 - "
@@ -336,10 +336,10 @@ DOMAIN = {
     ("omega-and-energy", "energy"): ("thetadot^2*(A + m*R^2 + C*phi'^2)/2 + "
                                      "k^2*asin(sin(phi))^2/2", "phi"),
     ("omega-and-energy", "thetadot"): ("sqrt(2*h - k^2*asin(sin(phi))^2)/"
-                                       "sqrt(A + m*R^2 + C*phi'^2)", "inside the square root"),
+                                       "sqrt(A + m*R^2 + C*phi'^2)", "part of the domain"),
     ("identity-1-19", "dxdot_dthetaprime"): ("DOM:thetaprime", "part of the domain"),
     ("identity-1-19", "dLstar_dthetaprime"): ("J*xdot*theta' + b*sqrt(1 - sin(theta)^2)",
-                                              "wrong sign on part of the domain"),
+                                              "part of the domain"),
     ("constraint-star", "omega"): ("DOM:theta", "part of the domain"),
     ("constraint-star", "ydot_star"): ("DOM:theta", "part of the domain"),
     ("constraint-star", "bracket"): ("-(1 + tan(theta)*Abs(tan(theta)))", "theta"),
@@ -347,18 +347,18 @@ DOMAIN = {
     ("sledge-L-star", "Omega"): ("xdot^2*(m*(1 + tan(theta)^2) + J*theta'*Abs(theta'))/2 "
                                  "- k^2*theta^2/2", "thetaprime"),
     ("sledge-L-star", "xdot"): ("sqrt(2*h - k^2*theta*Abs(theta))/sqrt(m*(1 + tan(theta)^2) "
-                                "+ J*theta'^2)", "inside the square root"),
+                                "+ J*theta'^2)", "part of the domain"),
     ("sledge-L-star", "L_star"): ("sqrt(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + "
                                   "J*theta'*Abs(theta'))", "complex values"),
     ("sledge-reduced-equation", "theta_pp"): ("DOM:theta", "theta"),
     ("sledge-reduced-equation", "last_term"): ("m*k^2*Abs(theta)*(1 + tan(theta)^2)",
                                                "(for example at theta ="),
-    ("nielsen-form", "total_derivative"): ("DOM:rprimeprime", "rprimeprime"),
+    ("nielsen-form", "total_derivative"): ("DOM:rprimeprime", "part of the domain"),
     ("nielsen-form", "nielsen"): ("DOM:rprimeprime", ""),       # a big expression: any hint
     ("chaplygin-sleigh", "L_star"): ("sqrt(2*h - k^2*theta^2)*sqrt(m/cos(theta)^2 + "
                                      "(J + m*b^2)*theta'*Abs(theta'))", "complex values"),
     ("chaplygin-sleigh", "J_eff"): ("J + m*asin(sin(b))^2", "b"),
-    ("chaplygin-sleigh", "P_star"): ("DOM:thetaprime", "thetaprime"),
+    ("chaplygin-sleigh", "P_star"): ("DOM:thetaprime", "part of the domain"),
     ("chaplygin-sleigh", "odd_part"): ("DOM:thetaprime", "part of the domain"),
     ("turning-point", "xdot"): ("C*sqrt(1 - sin(theta)*Abs(sin(theta)))", "theta"),
     ("turning-point", "t_turn"): ("sqrt(J)/k*asin(pi/(2*a))*sign(5 - a)", "a"),

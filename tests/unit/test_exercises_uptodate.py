@@ -112,7 +112,9 @@ def test_placeholders_replace_solutions():
            "# %%\ncheck('demo', a)\n")
     student, solution = make_exercises.build("demo", src)
     assert [c.source for c in student.cells] == [
-        "Do it.", "import math\na = None  # your answer here\na", "check('demo', a)"]
+        "Do it.", "import math\na = None  # your answer here\na", "check('demo', a)",
+        make_exercises.HAND_IN]
+    assert student.metadata["whittaker_teach"] == {"exercise": "demo"}
     sources = [c.source for c in solution.cells]
     assert sources[0].startswith(":::{exercise}\n:label: ex-demo")
     assert sources[1].startswith("```{solution-start} ex-demo\n:class: dropdown")

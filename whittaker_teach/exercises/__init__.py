@@ -19,7 +19,11 @@ as ``red.L_star``, or a string such as ``"sqrt(2*h)*..."``; ``theta(x)`` or
 ``theta``, ``Derivative(theta(x), x)`` or ``thetaprime`` or ``theta'``), and
 never raises: a wrong answer gets a hint that names the kind of difference
 (a wrong sign, a missing factor, a wrong power, a symbol it should not
-contain), an unreadable one a message saying what was expected.
+contain), an unreadable one a message saying what was expected.  A number
+may be of any common kind (Python, ``fractions``, SymPy, numpy, mpmath).
+Every check is bounded (:mod:`.limits`): it answers within 2 s whatever it
+is given, if need be with "this answer is too expensive to check; simplify
+it".
 
 The expected answers are derived from the library on the first check of
 each exercise (about a second), not on import.

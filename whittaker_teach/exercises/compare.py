@@ -1,22 +1,27 @@
 """Is an answer equal to the right one, and if not, what kind of difference is it?
 
-Equality is decided by evaluation at random admissible points, with mpmath
-at 30 digits: the points respect the exercise's assumptions (positive
-masses, the direction of travel, an energy above the potential), so any
-form of the right answer (``1 + tan(theta)**2`` or ``sec(theta)**2``,
-expanded or factored, ``sqrt(a)*sqrt(b)`` or ``sqrt(a*b)``) agrees with it
-to about 28 digits at every point, and a wrong answer does not.  This is
-the method of the library's own checks (``whittaker_teach.verify``); an
-identity that fails only outside the sampled box is not seen.
+Equality is decided by evaluation at admissible points spread over the
+whole domain the exercise states (:meth:`Domain.sample`: every range is cut
+into slices and each slice gets a point, so an angle is tried all round the
+circle and ``e`` up to its largest value), with mpmath at 30 digits: the
+points respect the exercise's assumptions (positive masses, the direction of
+travel, an energy above the potential), so any form of the right answer
+(``1 + tan(theta)**2`` or ``sec(theta)**2``, expanded or factored,
+``sqrt(a)*sqrt(b)`` or ``sqrt(a*b)``) agrees with it to about 28 digits at
+every point, and a wrong answer, or one right on only part of the domain
+(``sqrt(1 - sin(theta)**2)`` for ``cos(theta)``), does not.  The evaluation
+is guarded (:class:`_Fn`): a value beyond 1e300 (``exp(exp(exp(100)))``) is
+never computed.
 
 When the answer is wrong, :func:`compare` looks for a simple explanation,
 in this order: complex values where the right answer is real, a wrong sign,
 a constant factor, a factor that is a power of one or more symbols (a
 missing factor, a wrong power), the answer being a power of the right one,
-a wrong power of one factor, one term with the wrong sign, missing or
-changed, an extra term, an additive constant; otherwise it says which
-symbols the difference depends on.  The hints name the kind of difference,
-not the right answer.
+a wrong power of one factor, one term with the wrong sign (everywhere, or on
+part of the domain), missing or changed, an extra term, a difference inside
+one factor (a square root, a denominator), an additive constant, an answer
+right at some points only; otherwise it says which symbols the difference
+depends on.  The hints name the kind of difference, not the right answer.
 
 >>> import sympy as sp
 >>> th, k = sp.symbols("theta k", positive=True)
@@ -559,6 +564,9 @@ def _explain(answer, expected, domain, sign_note, fa, fe, pts, A, E):
         return Verdict(False, f"the right answer is identically 0 and yours is not{extra}")
     if all(abs(a) <= TOL for a in A):
         return Verdict(False, "your answer is 0, and the right one is not")
+    part = _part_of_domain(answer, A, E, pts)       # cheap, and the most useful then
+    if part:
+        return Verdict(False, part)
     p0 = pts[0]
     with mpmath.workdps(DPS):
         R = [a / e if abs(e) > TOL else None for a, e in zip(A, E)]
@@ -608,10 +616,6 @@ def _explain(answer, expected, domain, sign_note, fa, fe, pts, A, E):
     if all(_close(d, D[0]) for d in D):
         return Verdict(False, f"your answer differs from the right one by a constant "
                        f"(yours minus the right one is {_nice(D[0])})")
-
-    part = _part_of_domain(answer, A, E, pts)
-    if part:
-        return Verdict(False, part)
 
     def diff(p):
         a, e = fa(p), fe(p)

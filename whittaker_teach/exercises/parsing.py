@@ -264,7 +264,29 @@ class _Builder:
         raise AnswerError("the answer is not a formula (only + - * / ** and the maths functions "
                           "are allowed)")
 
+    def _chain(self, node, depth, ops):
+        """The operands of a left-nested chain a + b - c + ... (or a*b/c...), signed."""
+        items = []
+        while isinstance(node, ast.BinOp) and isinstance(node.op, ops):
+            items.append((node.op, node.right))
+            node = node.left
+            self.nodes += 1
+            if self.nodes > MAX_NODES:
+                raise TooExpensive()
+        items.append((None, node))
+        return [(op, self.build(n, depth + 1)) for op, n in reversed(items)]
+
     def _binop(self, node, depth):
+        if isinstance(node.op, (ast.Add, ast.Sub)):     # one Add for the whole chain: linear
+            terms = self._chain(node, depth, (ast.Add, ast.Sub))
+            return _bounded_number(sp.Add(*[-t if isinstance(op, ast.Sub) else t
+                                            for op, t in terms]))
+        if isinstance(node.op, (ast.Mult, ast.Div)):
+            factors = self._chain(node, depth, (ast.Mult, ast.Div))
+            if any(isinstance(op, ast.Div) and f == 0 for op, f in factors):
+                raise AnswerError("the answer divides by zero")
+            return _bounded_number(sp.Mul(*[1 / f if isinstance(op, ast.Div) else f
+                                            for op, f in factors]))
         a = self.build(node.left, depth + 1)
         b = self.build(node.right, depth + 1)
         op = node.op
