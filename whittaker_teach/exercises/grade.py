@@ -575,6 +575,12 @@ def summary(rows, n):
             f"failure{'s' if failures != 1 else ''}")
 
 
+_FEEDBACK_CSS = ("<style>body{font-family:sans-serif;max-width:60em;margin:2em auto;"
+                 "padding:0 1em;line-height:1.4}table{border-collapse:collapse}"
+                 "td,th{padding:.4em .6em;border-bottom:1px solid #ddd;text-align:left;"
+                 "vertical-align:top}td:nth-child(2){white-space:nowrap}</style>")
+
+
 def write_feedback(folder, paths, results):
     """One HTML page per submission: its parts, right or not, and the messages."""
     folder = Path(folder)
@@ -590,12 +596,13 @@ def write_feedback(folder, paths, results):
                          f'<td style="color:{colour}">{label}</td>'
                          f"<td>{html.escape(r.message)}</td></tr>")
         exercise = html.escape(rows[0].exercise) if rows else ""
+        right = sum(1 for r in rows if r.part and r.ok)
+        total = sum(1 for r in rows if r.part)
         page = ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-                f"<title>Feedback: {html.escape(name)}</title><style>body{{font-family:"
-                "sans-serif;max-width:60em;margin:2em auto;padding:0 1em}}td,th{{padding:.3em "
-                ".6em;border-bottom:1px solid #ddd;text-align:left;vertical-align:top}}"
-                "table{border-collapse:collapse}</style></head><body>"
-                f"<h1>Feedback on {html.escape(name)}</h1><p>Exercise: {exercise}</p>"
+                "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
+                f"<title>Feedback: {html.escape(name)}</title>" + _FEEDBACK_CSS +
+                f"</head><body><h1>Feedback on {html.escape(name)}</h1>"
+                f"<p>Exercise: {exercise}. {right} of {total} parts right.</p>"
                 "<table><tr><th>part</th><th>result</th><th>message</th></tr>"
                 + "".join(items) + "</table></body></html>\n")
         stem = "".join(c if c.isalnum() or c in "-_." else "_" for c in name)
