@@ -239,11 +239,26 @@ del _Capped
 '''
 
 
+_CONFINE = []
+
+
 def confinement_available():
-    """Can kernels run in their own network and mount namespaces (root, unshare, setpriv)?"""
-    return (sys.platform.startswith("linux") and hasattr(os, "geteuid") and os.geteuid() == 0
-            and shutil.which("unshare") is not None and shutil.which("setpriv") is not None
-            and shutil.which("mount") is not None)
+    """Can kernels run in their own network and mount namespaces (root, unshare, setpriv)?
+
+    Tried once: ``unshare -mn true`` must succeed (a container without the
+    capability to make namespaces cannot).
+    """
+    if not _CONFINE:
+        ok = (sys.platform.startswith("linux") and hasattr(os, "geteuid") and os.geteuid() == 0
+              and all(shutil.which(c) for c in ("unshare", "setpriv", "mount")))
+        if ok:
+            try:
+                ok = subprocess.run(["unshare", "-mn", "true"], capture_output=True,
+                                    timeout=20).returncode == 0
+            except (OSError, subprocess.SubprocessError):
+                ok = False
+        _CONFINE.append(ok)
+    return _CONFINE[0]
 
 
 def _kernel_main(argv):
@@ -621,6 +636,9 @@ def main(args):
           + (f", feedback in {args.feedback}" if args.feedback else ""))
     if missing:
         print(f"(not found: {', '.join(missing[:5])}{' ...' if len(missing) > 5 else ''})")
+    if not confinement_available():
+        print("(the kernels were not confined: grade as root on Linux, in a container, to "
+              "give each its own network and read-only file systems)")
     return 0
 
 
