@@ -11,8 +11,10 @@ Each exercise is written once, in ``exercises/src/<id>.py`` (Jupyter's
 
 * ``exercises/<id>.ipynb``, the student notebook: the solution code is
   replaced by placeholders (``answer = None  # your answer here``), the
-  solution-only cells are left out, and each ``check(...)`` says "not
-  answered yet";
+  solution-only cells are left out, each ``check(...)`` says "not
+  answered yet", and a last cell says how to hand it in and what the
+  lecturer runs (``python -m whittaker_teach grade``); its metadata names
+  the exercise (``"whittaker_teach": {"exercise": id}``) for the grader;
 * ``exercises/solutions/<id>.ipynb``, the solution notebook, which is also
   the exercise's page on the book's site: the statement in an
   ``{exercise}`` box and each solution in a ``{solution}`` dropdown
@@ -132,9 +134,30 @@ def _split_solution(source: str, name: str) -> tuple[str, str, bool]:
     return "\n".join(sol), "\n".join(out), found
 
 
+HAND_IN = """## Handing in
+
+1. Restart the kernel and run every cell (*Kernel > Restart Kernel and Run All Cells*):
+   the grader runs your notebook the same way, from top to bottom in a fresh kernel,
+   with a time limit per cell and no network.
+2. Save it, then download it: *File > Download* (JupyterLab) or
+   *File > Download as > Notebook (.ipynb)*. Hand in that `.ipynb` file, not a PDF
+   or a copy of the text.
+
+Your lecturer grades the whole class with
+
+```
+python -m whittaker_teach grade submissions/*.ipynb --out grades.csv --feedback feedback/
+```
+
+which checks every answer you passed to `check(...)` again (the last check of each
+part counts; a part you never checked is "not answered") and writes one row per part
+and a feedback page for you."""
+
+
 def _nb(cells: list[tuple[str, str, list]], ex_id: str):
     nb = nbformat.v4.new_notebook()
-    nb.metadata = {"kernelspec": dict(KERNELSPEC), "language_info": {"name": "python"}}
+    nb.metadata = {"kernelspec": dict(KERNELSPEC), "language_info": {"name": "python"},
+                   "whittaker_teach": {"exercise": ex_id}}
     for i, (kind, source, tags) in enumerate(cells):
         if kind == "markdown":
             cell = nbformat.v4.new_markdown_cell(source)
@@ -197,6 +220,7 @@ def build(ex_id: str, text: str):
             flush()
             solution.append(("code", src, tags))
     flush()
+    student.append(("markdown", HAND_IN, []))
     if statements != 1:
         raise SourceError(f"{ex_id}: exactly one '# %% [markdown] statement' cell is needed, "
                           f"found {statements}")
@@ -227,6 +251,8 @@ def stale(generated, path: Path) -> bool:
         return True
     stored = nbformat.read(path, as_version=4)
     if cell_signature(stored) != cell_signature(generated):
+        return True
+    if stored.metadata.get("whittaker_teach") != generated.metadata.get("whittaker_teach"):
         return True
     return any(c.cell_type == "code" and c.execution_count is None and c.source.strip()
                for c in stored.cells)

@@ -11,6 +11,10 @@ Commands::
     bench numerics [--quick] [--json FILE] [--plot FILE] [--quiet]
                                   speed against error: the full, reduced and exact
                                   models of the sledge (whittaker_teach.numerics)
+    grade SUBMISSION.ipynb ... --out grades.csv [--feedback DIR]
+                                  run the students' exercise notebooks, each in a
+                                  fresh confined kernel, and write their grades
+                                  (whittaker_teach.exercises.grade)
 """
 
 import argparse
@@ -58,6 +62,11 @@ def _bench(args):
     return main(args)
 
 
+def _grade(args):
+    from .exercises.grade import main
+    return main(args)
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python -m whittaker_teach",
                                      description="Mei (1983): the generalized Whittaker "
@@ -79,6 +88,17 @@ def main(argv=None):
     b.add_argument("--plot", metavar="FILE", help="numerics: the error-against-time figure")
     b.add_argument("--quiet", action="store_true", help="numerics: no progress bar")
     b.set_defaults(func=_bench)
+    g = sub.add_parser("grade", help="grade the students' exercise notebooks into a CSV")
+    g.add_argument("submissions", nargs="+", help="the submitted .ipynb files")
+    g.add_argument("--out", required=True, help="the CSV to write: "
+                   "submission,exercise,part,ok,message")
+    g.add_argument("--feedback", metavar="DIR", help="write one HTML page per submission")
+    g.add_argument("--jobs", type=int, default=2, help="notebooks run at a time (default 2)")
+    g.add_argument("--cell-timeout", type=float, default=60, help="seconds per cell (60)")
+    g.add_argument("--timeout", type=float, default=300, help="seconds per notebook (300)")
+    g.add_argument("--memory", type=int, default=3000, help="MB of memory per kernel (3000)")
+    g.add_argument("--quiet", action="store_true", help="no progress bar")
+    g.set_defaults(func=_grade)
     args = parser.parse_args(argv)
     return args.func(args)
 

@@ -15,9 +15,9 @@
 # **Assumptions:** $m, J, k, b > 0$; the sleigh moves with $\dot x > 0$; $|\theta| < \pi/2$.
 #
 # 1. `L_star`: the reduced Lagrangian (1.16) (you may use the library's reduction).
-# 2. `J_eff`: $L^*$ is the sledge's (3.7) with $J$ replaced by another moment of inertia.
+# 2. `J_eff`: $L^{\ast}$ is the sledge's (3.7) with $J$ replaced by another moment of inertia.
 #    Which? What is it physically?
-# 3. `P_star`: $(\partial L/\partial\dot y)^*$ of (1.26), in $\theta'$, $\theta$ and $h$.
+# 3. `P_star`: $(\partial L/\partial\dot y)^{\ast}$ of (1.26), in $\theta'$, $\theta$ and $h$.
 # 4. `odd_part`: from $\theta''$ solved from (1.26), the part odd in $\theta'$,
 #    $\tfrac12[\theta''(\theta', \theta) - \theta''(-\theta', \theta)]$. What does it say
 #    about the mirrored path $\theta(-x)$?
@@ -48,7 +48,7 @@ sleigh.constraints
 # $\frac{d}{dx}\theta(x)$; the check accepts them as they are, or rewritten
 # with the plain symbols `theta`, `thetaprime` (`expr.xreplace(to_plain)`).
 #
-# ## 1. $L^*$
+# ## 1. $L^{\ast}$
 
 # %%
 ### BEGIN SOLUTION
@@ -61,7 +61,7 @@ L_star
 check("chaplygin-sleigh", L_star, part="L_star")
 
 # %% [markdown]
-# ## 2. The moment of inertia in $L^*$
+# ## 2. The moment of inertia in $L^{\ast}$
 
 # %%
 ### BEGIN SOLUTION
@@ -72,17 +72,17 @@ J_eff = sp.factor(L_star_squared.coeff(thetaprime, 2)/(2*h - k**2*theta**2))
 J_eff
 
 # %% [markdown] solution
-# $L^*$ has $J\theta'^2 + mb^2\theta'^2$ where the sledge has $J\theta'^2$:
+# $L^{\ast}$ has $J\theta'^2 + mb^2\theta'^2$ where the sledge has $J\theta'^2$:
 # $J_\text{eff} = J + mb^2$, the moment of inertia about the contact point
-# (parallel axes). Along the constraint the term $mb\dot\theta(\dot y\cos\theta
-# - \dot x\sin\theta)$ of $L$ vanishes, so $\tilde L$, $\Omega$ and $L^*$ are
+# (parallel axes). Along the constraint the term
+# $mb\dot\theta(\dot y\cos\theta - \dot x\sin\theta)$ of $L$ vanishes, so $\tilde L$, $\Omega$ and $L^{\ast}$ are
 # those of a sledge with $J + mb^2$.
 
 # %%
 check("chaplygin-sleigh", J_eff, part="J_eff")
 
 # %% [markdown]
-# ## 3. $(\partial L/\partial\dot y)^*$
+# ## 3. $(\partial L/\partial\dot y)^{\ast}$
 
 # %%
 ### BEGIN SOLUTION
@@ -121,8 +121,8 @@ odd_part
 # solutions for the sledge ($b = 0$); for the sleigh it gives the path of a sleigh
 # whose centre of mass is *behind* the knife edge. The sleigh knows its front
 # from its back, and the constraint term of (1.26), through
-# $(\partial L/\partial\dot y)^*$, which carries $b$, is where it does: that is why
-# it is not a sledge with $J + mb^2$ although its $L^*$ is. (It is not a failure
+# $(\partial L/\partial\dot y)^{\ast}$, which carries $b$, is where it does: that is why
+# it is not a sledge with $J + mb^2$ although its $L^{\ast}$ is. (It is not a failure
 # of time reversal: the library gives the same equation for $\dot x < 0$,
 # `sleigh.reduce("x", -1)`.)
 

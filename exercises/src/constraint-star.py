@@ -2,8 +2,8 @@
 # # The reduced constraint of the sledge
 #
 # In the generalized Whittaker equations (1.26) the constraints enter through
-# $\dot q^*_{\varepsilon+\beta}$ (1.23) and through the bracket that multiplies
-# $(\partial L/\partial\dot q_{\varepsilon+\beta})^*$. Here you compute both for
+# $\dot q^{\ast}_{\varepsilon+\beta}$ (1.23) and through the bracket that multiplies
+# $(\partial L/\partial\dot q_{\varepsilon+\beta})^{\ast}$. Here you compute both for
 # the sledge of section 3.
 
 # %% [markdown] statement
@@ -14,10 +14,10 @@
 # **Assumptions:** $m, J, k > 0$; the sledge moves with $\dot x > 0$; $|\theta| < \pi/2$.
 #
 # 1. `omega`: $\omega_y(\theta', \dot x, \theta)$ (1.22): the constraint with (1.5) substituted.
-# 2. `ydot_star`: $\dot y^* = \partial\omega_y/\partial\dot x$ (1.23), (3.8).
+# 2. `ydot_star`: $\dot y^{\ast} = \partial\omega_y/\partial\dot x$ (1.23), (3.8).
 # 3. `bracket`: the bracket of (1.26),
-#    $\dfrac{d}{dx}\dfrac{\partial\dot y^*}{\partial\theta'} - \dfrac{\partial\dot y^*}{\partial\theta}$.
-# 4. `P_star`: $(\partial L/\partial\dot y)^*$: $\partial L/\partial\dot y$ with the
+#    $\dfrac{d}{dx}\dfrac{\partial\dot y^{\ast}}{\partial\theta'} - \dfrac{\partial\dot y^{\ast}}{\partial\theta}$.
+# 4. `P_star`: $(\partial L/\partial\dot y)^{\ast}$: $\partial L/\partial\dot y$ with the
 #    constraint and (1.5) substituted and $\dot x$ from (3.5).
 #
 # Answer with SymPy expressions in the symbols defined below (or strings).
@@ -64,7 +64,7 @@ omega
 check("constraint-star", omega, part="omega")
 
 # %% [markdown]
-# ## 2. $\dot y^*$ (1.23)
+# ## 2. $\dot y^{\ast}$ (1.23)
 
 # %%
 ### BEGIN SOLUTION
@@ -74,8 +74,8 @@ ydot_star = omega.diff(xdot)                                  # (1.23)
 ydot_star
 
 # %% [markdown] solution
-# $\dot y^* = \tan\theta = dy/dx$, the slope of the path: by (1.24),
-# $\dot y^* = \dot y/\dot x$ for a constraint homogeneous of degree one.
+# $\dot y^{\ast} = \tan\theta = dy/dx$, the slope of the path: by (1.24),
+# $\dot y^{\ast} = \dot y/\dot x$ for a constraint homogeneous of degree one.
 
 # %%
 check("constraint-star", ydot_star, part="ydot_star")
@@ -91,14 +91,14 @@ bracket = d_dx(ydot_star.diff(thetaprime)) - ydot_star.diff(theta)
 bracket
 
 # %% [markdown] solution
-# $\dot y^*$ does not depend on $\theta'$, so only $-\partial\dot y^*/\partial\theta
+# $\dot y^{\ast}$ does not depend on $\theta'$, so only $-\partial\dot y^{\ast}/\partial\theta
 # = -(1 + \tan^2\theta) = -1/\cos^2\theta$ remains, the paper's value.
 
 # %%
 check("constraint-star", bracket, part="bracket")
 
 # %% [markdown]
-# ## 4. $(\partial L/\partial\dot y)^*$
+# ## 4. $(\partial L/\partial\dot y)^{\ast}$
 
 # %%
 ### BEGIN SOLUTION

@@ -1,7 +1,7 @@
 # %% [markdown]
 # # The identity (1.19)
 #
-# The heart of the reduction is that $L^*$ (1.16), though built from
+# The heart of the reduction is that $L^{\ast}$ (1.16), though built from
 # $\partial\Omega/\partial\dot q_\varepsilon$, has the derivatives (1.19)-(1.21)
 # that make (1.4) turn into (1.26). Here you follow the paper's route to (1.19)
 # for one concrete $\Omega$, with a term linear in the velocity.
@@ -14,12 +14,13 @@
 #
 # In (1.14)-(1.19), $\dot x$ stands for the root $\dot x(\theta', \theta, h)$ of
 # the energy integral (1.13); keep it as the symbol `xdot`.
-# **Assumptions:** $m, J, b, k > 0$; $\dot x > 0$.
+# **Assumptions:** $m, J, b, k > 0$; $\dot x > 0$; $\theta$ is any angle and
+# $\theta'$ any real number (your answers must hold all round the circle).
 #
 # 1. `dxdot_dthetaprime`: solve (1.14) for $\partial\dot x/\partial\theta'$:
-#    $\dot x\,\Omega_{\dot x\dot x}\,\dfrac{\partial\dot x}{\partial\theta'}
-#    + \dot x\,\Omega_{\dot x\theta'} - \Omega_{\theta'} = 0$.
-# 2. `dLstar_dthetaprime`: $\partial L^*/\partial\theta'$ from (1.17),
+#    $\dot x\,\Omega_{\dot x\dot x}\,\dfrac{\partial\dot x}{\partial\theta'} +
+#    \dot x\,\Omega_{\dot x\theta'} - \Omega_{\theta'} = 0$.
+# 2. `dLstar_dthetaprime`: $\partial L^{\ast}/\partial\theta'$ from (1.17),
 #    $\Omega_{\dot x\dot x}\,\dfrac{\partial\dot x}{\partial\theta'} + \Omega_{\dot x\theta'}$,
 #    with step 1 substituted, and simplified.
 #
@@ -63,7 +64,7 @@ dxdot_dthetaprime
 check("identity-1-19", dxdot_dthetaprime, part="dxdot_dthetaprime")
 
 # %% [markdown]
-# ## 2. $\partial L^*/\partial\theta'$ from (1.17), and (1.19)
+# ## 2. $\partial L^{\ast}/\partial\theta'$ from (1.17), and (1.19)
 
 # %%
 ### BEGIN SOLUTION
@@ -77,10 +78,10 @@ dLstar_dthetaprime
 
 # %% [markdown] solution
 # It equals $\dfrac{1}{\dot x}\dfrac{\partial\Omega}{\partial\theta'}
-# = J\dot x\theta' + b\cos\theta$: that is (1.19). As a cross-check, build $L^*$
+# = J\dot x\theta' + b\cos\theta$: that is (1.19). As a cross-check, build $L^{\ast}$
 # itself: the energy (1.13) is $\tfrac12\dot x^2(m + J\theta'^2) + \tfrac12 k^2\theta^2 = h$
-# (the linear term cancels), and $L^* = \partial\Omega/\partial\dot x$ at its root;
-# differentiating $L^*$ directly gives the same thing once $\dot x$ is put back.
+# (the linear term cancels), and $L^{\ast} = \partial\Omega/\partial\dot x$ at its root;
+# differentiating $L^{\ast}$ directly gives the same thing once $\dot x$ is put back.
 
 # %% solution
 v = sp.Symbol("v")

@@ -16,9 +16,10 @@
 # **Assumptions:** $m, \mu > 0$, $r > 0$; the particle goes round with
 # $\dot\varphi > 0$ (the direction of travel).
 #
-# 1. `L_star`: the reduced Lagrangian $L^*(r', r)$ (1.6), (1.12), (1.16).
-# 2. `r_pp`: Whittaker's equation (1.27) for $L^*$, solved for $r''$.
-# 3. `h`: show that the conic $r = p/(1 + e\cos\varphi)$ ($p > 0$, $e \ge 0$)
+# 1. `L_star`: the reduced Lagrangian $L^{\ast}(r', r)$ (1.6), (1.12), (1.16).
+# 2. `r_pp`: Whittaker's equation (1.27) for $L^{\ast}$, solved for $r''$.
+# 3. `h`: show that the conic $r = p/(1 + e\cos\varphi)$ ($p > 0$, $e \ge 0$: ellipses,
+#    the parabola $e = 1$ and hyperbolas $e > 1$)
 #    solves (1.27), and find the energy $h$ in terms of $p$ and $e$ (and $m$, $\mu$).
 #
 # Answer with SymPy expressions in the symbols defined below (or strings; `r'`
@@ -42,11 +43,11 @@ def d_dphi(f):
     return f.diff(phi) + f.diff(rprime)*rprimeprime + f.diff(r)*rprime
 
 # %% [markdown]
-# ## 1. The reduced Lagrangian $L^*$
+# ## 1. The reduced Lagrangian $L^{\ast}$
 #
 # $\Omega$ (1.6) is $L$ with $\dot r = \dot\varphi\, r'$; solve
 # $\dot\varphi\,\partial\Omega/\partial\dot\varphi - \Omega = h$ (1.13) for
-# $\dot\varphi > 0$ and put the root in $L^* = \partial\Omega/\partial\dot\varphi$ (1.16).
+# $\dot\varphi > 0$ and put the root in $L^{\ast} = \partial\Omega/\partial\dot\varphi$ (1.16).
 
 # %%
 ### BEGIN SOLUTION

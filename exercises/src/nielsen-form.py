@@ -2,7 +2,7 @@
 # # The Nielsen form
 #
 # Section 2 of Mei (1983) rewrites the generalized Whittaker equations in
-# Nielsen's form (2.4), which needs only the total derivative $dL^*/dq_\varepsilon$
+# Nielsen's form (2.4), which needs only the total derivative $dL^{\ast}/dq_\varepsilon$
 # (2.1) and partial derivatives. Here you do it for the Kepler problem.
 
 # %% [markdown] statement
@@ -10,17 +10,17 @@
 # ($q_\varepsilon = \varphi$, $r' = dr/d\varphi$; see the exercise *kepler-orbit*)
 # has the reduced Lagrangian
 #
-# $$L^* = \sqrt{2h + \frac{2m\mu}{r}}\;\sqrt{m(r^2 + r'^2)} .$$
+# $$L^{\ast} = \sqrt{2h + \frac{2m\mu}{r}}\;\sqrt{m(r^2 + r'^2)} .$$
 #
 # The system is holonomic, so the constraint terms of (1.26) and (2.4) are absent.
 # **Assumptions:** $m, \mu > 0$, $r > 0$, $\dot\varphi > 0$, $h + m\mu/r > 0$.
 #
-# 1. `total_derivative`: $dL^*/d\varphi$ (2.1), with $r''$ appearing explicitly.
+# 1. `total_derivative`: $dL^{\ast}/d\varphi$ (2.1), with $r''$ appearing explicitly.
 # 2. `nielsen`: the left-hand side of the Nielsen form (2.4),
-#    $\dfrac{\partial}{\partial r'}\Big(\dfrac{dL^*}{d\varphi}\Big) - 2\dfrac{\partial L^*}{\partial r}$.
+#    $\dfrac{\partial}{\partial r'}\Big(\dfrac{dL^{\ast}}{d\varphi}\Big) - 2\dfrac{\partial L^{\ast}}{\partial r}$.
 #
 # Then check that it agrees with the left-hand side of (1.26) (here (1.27)),
-# $\dfrac{d}{d\varphi}\dfrac{\partial L^*}{\partial r'} - \dfrac{\partial L^*}{\partial r}$.
+# $\dfrac{d}{d\varphi}\dfrac{\partial L^{\ast}}{\partial r'} - \dfrac{\partial L^{\ast}}{\partial r}$.
 
 # %%
 from whittaker_teach.notebook import setup; setup()
@@ -38,8 +38,8 @@ L_star
 # %% [markdown]
 # ## 1. The total derivative (2.1)
 #
-# $\dfrac{dL^*}{d\varphi} = \dfrac{\partial L^*}{\partial r'}r'' + \dfrac{\partial L^*}{\partial r}r'
-# + \dfrac{\partial L^*}{\partial\varphi}$, with $r''$ treated as a separate symbol.
+# $\dfrac{dL^{\ast}}{d\varphi} = \dfrac{\partial L^{\ast}}{\partial r'}r'' + \dfrac{\partial L^{\ast}}{\partial r}r' +
+# \dfrac{\partial L^{\ast}}{\partial\varphi}$, with $r''$ treated as a separate symbol.
 
 # %%
 ### BEGIN SOLUTION
@@ -63,8 +63,8 @@ nielsen = total_derivative.diff(rprime) - 2*L_star.diff(r)       # (2.4)
 nielsen
 
 # %% [markdown] solution
-# By (2.2), $\partial(dL^*/d\varphi)/\partial r' = \dfrac{d}{d\varphi}\dfrac{\partial L^*}{\partial r'}
-# + \dfrac{\partial L^*}{\partial r}$, so (2.4) is (1.26) term for term. Checked:
+# By (2.2), $\partial(dL^{\ast}/d\varphi)/\partial r' = \dfrac{d}{d\varphi}\dfrac{\partial L^{\ast}}{\partial r'} +
+# \dfrac{\partial L^{\ast}}{\partial r}$, so (2.4) is (1.26) term for term. Checked:
 
 # %% solution
 def d_dphi(f):

@@ -12,15 +12,16 @@
 # the rolling axis and the vertical, and a spring of stiffness $k^2$ acts on
 # the heading:
 #
-# $$L = \tfrac12 m(\dot x^2 + \dot y^2) + \tfrac12 A\dot\theta^2 + \tfrac12 C\dot\varphi^2
-#   - \tfrac12 k^2\varphi^2,$$
+# $$L = \tfrac12 m(\dot x^2 + \dot y^2) + \tfrac12 A\dot\theta^2 + \tfrac12 C\dot\varphi^2 -
+#   \tfrac12 k^2\varphi^2,$$
 #
 # $$\dot x = R\dot\theta\cos\varphi,\qquad \dot y = R\dot\theta\sin\varphi .$$
 #
 # The constraints are of Chaplygin type (1.3) and homogeneous of degree one
 # (1.10). Take the rolling angle as the independent coordinate:
 # $q_\varepsilon = \theta$, $\varphi' = d\varphi/d\theta$ (1.5).
-# **Assumptions:** $m, R, A, C, k > 0$; the disk rolls forward, $\dot\theta > 0$.
+# **Assumptions:** $m, R, A, C, k > 0$; the disk rolls forward, $\dot\theta > 0$;
+# $\theta$ and $\varphi$ are any angles (with $2h - k^2\varphi^2 > 0$), $\varphi'$ any real number.
 #
 # 1. `Omega`: $\Omega(\varphi', \dot\theta, \varphi)$ (1.6): $\tilde L$ with $\dot\varphi = \dot\theta\,\varphi'$.
 # 2. `energy`: the left-hand side of the energy integral (1.13),

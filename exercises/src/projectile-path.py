@@ -17,8 +17,8 @@
 # launched from the origin with speed $v_0 > 0$ at the angle $\alpha$
 # ($0 < \alpha < \pi/2$) above the horizontal.
 #
-# 1. `L_star`: the reduced Lagrangian $L^*(y', y)$ (1.5), (1.6), (1.12), (1.16).
-# 2. `y_pp`: Whittaker's equation (1.27) for $L^*$, solved for $y''$.
+# 1. `L_star`: the reduced Lagrangian $L^{\ast}(y', y)$ (1.5), (1.6), (1.12), (1.16).
+# 2. `y_pp`: Whittaker's equation (1.27) for $L^{\ast}$, solved for $y''$.
 # 3. `path`: the path $y(x)$ of this projectile (its energy is $h = \tfrac12 m v_0^2$).
 #
 # Answer with SymPy expressions in the symbols defined below (or strings such
@@ -42,11 +42,11 @@ def d_dx(f):
     return f.diff(x) + f.diff(yprime)*yprimeprime + f.diff(y)*yprime
 
 # %% [markdown]
-# ## 1. The reduced Lagrangian $L^*$
+# ## 1. The reduced Lagrangian $L^{\ast}$
 #
 # Build $\Omega$ (1.6) with $\dot y = \dot x\,y'$, solve the energy integral
 # $\dot x\,\partial\Omega/\partial\dot x - \Omega = h$ (1.13) for $\dot x > 0$,
-# and put that root in $L^* = \partial\Omega/\partial\dot x$ (1.16).
+# and put that root in $L^{\ast} = \partial\Omega/\partial\dot x$ (1.16).
 
 # %%
 ### BEGIN SOLUTION
@@ -67,7 +67,7 @@ check("projectile-path", L_star, part="L_star")
 # %% [markdown]
 # ## 2. Whittaker's equation (1.27)
 #
-# $\dfrac{d}{dx}\dfrac{\partial L^*}{\partial y'} - \dfrac{\partial L^*}{\partial y} = 0$:
+# $\dfrac{d}{dx}\dfrac{\partial L^{\ast}}{\partial y'} - \dfrac{\partial L^{\ast}}{\partial y} = 0$:
 # solve it for $y''$ (use `d_dx` for the total derivative).
 
 # %%

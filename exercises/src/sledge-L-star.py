@@ -3,7 +3,7 @@
 #
 # Section 3 of Mei (1983) applies the reduction to a sledge on a horizontal
 # plane held by a torsional spring. Here you derive its reduced Lagrangian
-# $L^*$ (3.7) yourself, one step of the paper at a time.
+# $L^{\ast}$ (3.7) yourself, one step of the paper at a time.
 
 # %% [markdown] statement
 # The sledge has mass $m$ and moment of inertia $J$; its contact point is
@@ -20,7 +20,7 @@
 #
 # 1. `Omega`: $\Omega$ (1.6), (3.6): $\tilde L$ (3.3) with $\dot\theta = \dot x\,\theta'$ (1.5).
 # 2. `xdot`: solve the energy integral (1.13) for $\dot x$ (1.12), (3.5), taking $\dot x > 0$.
-# 3. `L_star`: the reduced Lagrangian $L^* = \partial\Omega/\partial\dot x$ at that $\dot x$ (1.16), (3.7).
+# 3. `L_star`: the reduced Lagrangian $L^{\ast} = \partial\Omega/\partial\dot x$ at that $\dot x$ (1.16), (3.7).
 #
 # Answer with SymPy expressions in the symbols defined below (or with strings
 # such as `"sqrt(2*h - k^2*theta^2)"`; `theta'` stands for $\theta'$).
@@ -81,7 +81,7 @@ xdot_sol
 check("sledge-L-star", xdot_sol, part="xdot")
 
 # %% [markdown]
-# ## 3. $L^*$ (1.16)
+# ## 3. $L^{\ast}$ (1.16)
 
 # %%
 ### BEGIN SOLUTION
@@ -91,7 +91,7 @@ L_star = sp.diff(Omega, xdot).subs(xdot, xdot_sol)   # (1.16)
 L_star
 
 # %% [markdown] solution
-# The library derives the same $L^*$ (its square roots are written in another
+# The library derives the same $L^{\ast}$ (its square roots are written in another
 # order, which the check does not mind):
 
 # %% solution

@@ -7,8 +7,8 @@
 
 # %% [markdown] statement
 # For the sledge of section 3 ($q_\varepsilon = x$, $\theta' = d\theta/dx$) you
-# are given the reduced Lagrangian $L^*$ (3.7), the reduced constraint
-# $\dot y^* = \tan\theta$ (3.8) and $(\partial L/\partial\dot y)^* = m\dot y$ in
+# are given the reduced Lagrangian $L^{\ast}$ (3.7), the reduced constraint
+# $\dot y^{\ast} = \tan\theta$ (3.8) and $(\partial L/\partial\dot y)^{\ast} = m\dot y$ in
 # $\theta'$, $\theta$ and $h$ (see the exercises *sledge-L-star* and
 # *constraint-star*). The paper prints (3.10) as
 #

@@ -60,19 +60,19 @@ CASES = {
          "A*thetadot**2/2 + m*R**2*thetadot**2*(sin(phi)**2 + cos(phi)**2)/2 "
          "+ C*(thetadot*phiprime)**2/2 - k**2*phi**2/2", "LIB:rolling_disk:theta:Omega"],
         [("thetadot^2*(A + m*R^2 + C*phi'^2) - k^2*phi^2/2", "terms of your answer are 2 times"),
-         ("thetadot^2*(A + m*R^2 + C*phi'^2)/2 + k^2*phi^2/2", "sign"),
+         ("thetadot^2*(A + m*R^2 + C*phi'^2)/2 + k^2*phi^2/2", "answer to part 'energy'"),
          ("thetadot^2*(A + m*R + C*phi'^2)/2 - k^2*phi^2/2", "R")]),
     ("omega-and-energy", "energy"): (
         ["thetadot^2*(A + m*R^2 + C*phi'^2)/2 + k^2*phi^2/2",
          "(thetadot**2*(A + m*R**2 + C*phiprime**2) + k**2*phi**2)/2"],
         [("thetadot^2*(A + m*R^2 + C*phi'^2)/2 + k^2*phi^2", "one term of your answer is 2 times"),
-         ("thetadot^2*(A + m*R^2 + C*phi'^2)/2 - k^2*phi^2/2", "sign"),
+         ("thetadot^2*(A + m*R^2 + C*phi'^2)/2 - k^2*phi^2/2", "answer to part 'Omega'"),
          ("thetadot*(A + m*R^2 + C*phi'^2)/2 + k^2*phi^2/2", "power of thetadot")]),
     ("omega-and-energy", "thetadot"): (
         ["sqrt(2*h - k^2*phi^2)/sqrt(A + m*R^2 + C*phi'^2)",
          "sqrt((2*h - k**2*phi**2)/(A + m*R**2 + C*phiprime**2))",
          "LIB:rolling_disk:theta:velocity"],
-        [("sqrt(2*h - k^2*phi^2)/sqrt(A + C*phi'^2)", "not equal"),
+        [("sqrt(2*h - k^2*phi^2)/sqrt(A + C*phi'^2)", "inside the square root in the denominator"),
          ("-sqrt(2*h - k^2*phi^2)/sqrt(A + m*R^2 + C*phi'^2)", "sign"),
          ("(2*h - k^2*phi^2)/sqrt(A + m*R^2 + C*phi'^2)", "power")]),
     ("identity-1-19", "dxdot_dthetaprime"): (
@@ -87,7 +87,7 @@ CASES = {
          ("J*xdot^2*theta' + b*cos(theta)", "xdot")]),
     ("constraint-star", "omega"): (
         ["xdot*tan(theta)", "xdot*sin(theta)/cos(theta)"],
-        [("tan(theta)", "factor xdot"), ("-xdot*tan(theta)", "sign"),
+        [("tan(theta)", "answer to part 'ydot_star'"), ("-xdot*tan(theta)", "sign"),
          ("xdot*tan(theta)^2", "power")]),
     ("constraint-star", "ydot_star"): (
         ["tan(theta)", "sin(theta)/cos(theta)", "LIB:sledge:x:ydot_star"],
@@ -113,14 +113,14 @@ CASES = {
         ["sqrt(2*h - k^2*theta^2)/sqrt(m*(1 + tan(theta)^2) + J*theta'^2)",
          "cos(theta)*sqrt((2*h - k**2*theta**2)/(m + J*thetaprime**2*cos(theta)**2))",
          "LIB:sledge:x:velocity"],
-        [("sqrt(2*h - k^2*theta^2)/sqrt(1 + tan(theta)^2 + J*theta'^2)", "not equal"),
+        [("sqrt(2*h - k^2*theta^2)/sqrt(1 + tan(theta)^2 + J*theta'^2)", "factor m is missing"),
          ("-sqrt(2*h - k^2*theta^2)/sqrt(m*(1 + tan(theta)^2) + J*theta'^2)", "sign"),
          ("sqrt(2*h - k^2*theta^2)/(m*(1 + tan(theta)^2) + J*theta'^2)", "power")]),
     ("sledge-L-star", "L_star"): (
         ["sqrt(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + J*theta'^2)",
          "sqrt((2*h - k**2*theta**2)*(m + m*tan(theta)**2 + J*thetaprime**2))",
          "LIB:sledge:x:L_star"],
-        [("sqrt(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + theta'^2)", "not equal"),
+        [("sqrt(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + theta'^2)", "factor J is missing"),
          ("-sqrt(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + J*theta'^2)", "sign"),
          ("(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + J*theta'^2)", "power")]),
     ("sledge-reduced-equation", "theta_pp"): (
@@ -155,9 +155,10 @@ CASES = {
     ("chaplygin-sleigh", "L_star"): (
         ["LIB:offset_sleigh:x:L_star",
          "sqrt(2*h - k^2*theta^2)*sqrt(m/cos(theta)^2 + (J + m*b^2)*theta'^2)"],
-        [("sqrt(2*h - k^2*theta^2)*sqrt(m/cos(theta)^2 + J*theta'^2)", "not equal"),
+        [("sqrt(2*h - k^2*theta^2)*sqrt(m/cos(theta)^2 + J*theta'^2)", "inside the square root"),
          ("-sqrt(2*h - k^2*theta^2)*sqrt(m/cos(theta)^2 + (J + m*b^2)*theta'^2)", "sign"),
-         ("sqrt(2*h - k^2*theta^2)*sqrt(m/cos(theta)^2 + (J + m*b)*theta'^2)", "not equal")]),
+         ("sqrt(2*h - k^2*theta^2)*sqrt(m/cos(theta)^2 + (J + m*b)*theta'^2)",
+          "factor b is missing")]),
     ("chaplygin-sleigh", "J_eff"): (
         ["J + m*b^2", "(J*m + m**2*b**2)/m"],
         [("J + b^2", "factor m"), ("J - m*b^2", "sign"), ("J + m*b", "power of b")]),
@@ -232,7 +233,11 @@ def _fn(spec):
             "kepler_total_drop": total.subs(r.diff(red.independent, 2), 0),
             "kepler_total_neg": -total, "kepler_total_sq": total**2,
             "kepler_nielsen_half": nielsen / 2, "kepler_nielsen_neg": -nielsen,
-            "kepler_nielsen_sq": nielsen**2}[spec[3:]]
+            "kepler_nielsen_sq": nielsen**2,
+            "kepler_total_plain": sp.sstr(EXERCISES["nielsen-form"].parts[
+                "total_derivative"].expected),
+            "kepler_nielsen_plain": sp.factor(EXERCISES["nielsen-form"].parts[
+                "nielsen"].expected)}[spec[3:]]
 
 
 def _number(spec):
@@ -242,11 +247,38 @@ def _number(spec):
     value = EXERCISES[ex].parts["x_turn" if ex == "turning-point" else "nfev"].expected
     value = int(value) if ex == "work-precision" else float(value)
     out = {"x_turn": value, "nfev": value, "nfev-1": value - 1, "nfev*2": value * 2,
-           "-nfev": -value}[what]
+           "-nfev": -value, "nfev+1": value + 1}[what]
     return str(out) if kind == "FLOATSTR" else out
 
 
+def _numbers(spec):
+    """'NUM:x_turn:numpy': the right number as a numpy, mpmath, sympy ... scalar."""
+    import fractions
+
+    import mpmath
+    import numpy as np
+    _, what, kind = spec.split(":")
+    ex = "turning-point" if what == "x_turn" else "work-precision"
+    value = EXERCISES[ex].parts[what].expected
+    if what == "nfev":
+        n = int(value)
+        return {"numpy": np.int64(n), "sympy": sp.Integer(n), "fraction": fractions.Fraction(n),
+                "float": float(n), "mpmath": mpmath.mpf(n), "numpyfloat": np.float64(n)}[kind]
+    x = float(value)
+    return {"numpy": np.float64(x), "mpmath": mpmath.mpf(x), "sympy": sp.Float(x),
+            "numpy32": np.float64(np.float32(x))}[kind]
+
+
+def _domain_mutation(spec, ex, part):
+    """'DOM:s': the right answer with s replaced by |s|: right only where s >= 0."""
+    e = EXERCISES[ex].parts[part].expected
+    s = [v for v in e.free_symbols if v.name == spec[4:]][0]
+    return e.xreplace({s: sp.Abs(s)})
+
+
 def _answer(a):
+    if isinstance(a, str) and a.startswith("NUM:"):
+        return _numbers(a)
     if isinstance(a, str) and a.startswith("LIB:"):
         return _lib(a)
     if isinstance(a, str) and a.startswith("FN:"):
@@ -259,11 +291,110 @@ def _answer(a):
 ALL_PARTS = [(ex, p) for ex in exercises() if ex in EXERCISES for p in parts(ex)]
 
 
+# more correct forms: numbers of every kind where a number is asked
+MORE_GOOD = {
+    ("projectile-path", "y_pp"): ["g*(1 + yprime**2)*m/(2*(m*g*y - h))"],
+    ("kepler-orbit", "h"): ["m*mu*(e - 1)*(e + 1)/(2*p)"],
+    ("omega-and-energy", "energy"): ["(A + m*R**2)*thetadot**2/2 + C*thetadot**2*phi'**2/2 "
+                                     "+ k**2*phi**2*(cos(phi)**2 + sin(phi)**2)/2"],
+    ("identity-1-19", "dxdot_dthetaprime"): ["-xdot*J*thetaprime/(J*thetaprime**2 + m)"
+                                             "*(sin(theta)**2 + cos(theta)**2)"],
+    ("identity-1-19", "dLstar_dthetaprime"): ["J*xdot*theta' + b*sin(theta + pi/2)"],
+    ("constraint-star", "omega"): ["xdot*tan(theta)*Rational(2, 2)"],
+    ("constraint-star", "P_star"): ["m*sin(theta)*sqrt(2*h - k^2*theta^2)/"
+                                    "sqrt(m + J*theta'^2*cos(theta)^2)"],
+    ("sledge-reduced-equation", "last_term"): ["m*k**2*theta*(1 + tan(theta)**2)"],
+    ("nielsen-form", "total_derivative"): ["FN:kepler_total_plain"],
+    ("nielsen-form", "nielsen"): ["FN:kepler_nielsen_plain"],
+    ("chaplygin-sleigh", "L_star"): ["sqrt((2*h - k^2*theta^2)*(m + (J + m*b^2)*theta'^2"
+                                     "*cos(theta)^2))/cos(theta)"],
+    ("chaplygin-sleigh", "J_eff"): ["m*b**2 + J*1.0"],
+    ("chaplygin-sleigh", "P_star"): ["m*(sin(theta) + b*theta'*cos(theta)^2)*sqrt(2*h - "
+                                     "k^2*theta^2)/sqrt(m + (J + m*b^2)*theta'^2*cos(theta)^2)"],
+    ("chaplygin-sleigh", "odd_part"): ["-b*theta'*m/((J + m*b^2)*cos(theta)) "
+                                       "- b*theta'^3*cos(theta)"],
+    ("turning-point", "t_turn"): ["sqrt(J)/k*(pi/2 - acos(pi/(2*a)))"],
+    ("turning-point", "x_turn"): ["NUM:x_turn:numpy", "NUM:x_turn:mpmath", "NUM:x_turn:sympy",
+                                  "NUM:x_turn:numpy32"],
+    ("work-precision", "method"): ["  DOP853 "],
+    ("work-precision", "nfev"): ["NUM:nfev:numpy", "NUM:nfev:sympy", "NUM:nfev:fraction",
+                                 "NUM:nfev:float", "NUM:nfev:mpmath", "NUM:nfev:numpyfloat"],
+}
+
+# at least one mutation per part that is right on only part of the stated domain
+# (an angle beyond pi/2, a hyperbola, a negative slope or energy), and others
+DOMAIN = {
+    ("projectile-path", "L_star"): ("DOM:y", "complex values"),
+    ("projectile-path", "y_pp"): ("DOM:y", "part of the domain"),
+    ("projectile-path", "path"): ("x*tan(asin(sin(2*alpha))/2) - g*x^2/(2*v0^2*cos(alpha)^2)",
+                                  "alpha"),
+    ("kepler-orbit", "L_star"): ("DOM:h", "part of the domain"),
+    ("kepler-orbit", "r_pp"): ("DOM:h", "h"),
+    ("kepler-orbit", "h"): ("-m*mu*Abs(1 - e^2)/(2*p)", "e"),
+    ("omega-and-energy", "Omega"): ("thetadot^2*(A + m*R^2 + C*phi'^2)/2 - "
+                                    "k^2*asin(sin(phi))^2/2", "phi"),
+    ("omega-and-energy", "energy"): ("thetadot^2*(A + m*R^2 + C*phi'^2)/2 + "
+                                     "k^2*asin(sin(phi))^2/2", "phi"),
+    ("omega-and-energy", "thetadot"): ("sqrt(2*h - k^2*asin(sin(phi))^2)/"
+                                       "sqrt(A + m*R^2 + C*phi'^2)", "part of the domain"),
+    ("identity-1-19", "dxdot_dthetaprime"): ("DOM:thetaprime", "part of the domain"),
+    ("identity-1-19", "dLstar_dthetaprime"): ("J*xdot*theta' + b*sqrt(1 - sin(theta)^2)",
+                                              "part of the domain"),
+    ("constraint-star", "omega"): ("DOM:theta", "part of the domain"),
+    ("constraint-star", "ydot_star"): ("DOM:theta", "part of the domain"),
+    ("constraint-star", "bracket"): ("-(1 + tan(theta)*Abs(tan(theta)))", "theta"),
+    ("constraint-star", "P_star"): ("DOM:theta", "part of the domain"),
+    ("sledge-L-star", "Omega"): ("xdot^2*(m*(1 + tan(theta)^2) + J*theta'*Abs(theta'))/2 "
+                                 "- k^2*theta^2/2", "thetaprime"),
+    ("sledge-L-star", "xdot"): ("sqrt(2*h - k^2*theta*Abs(theta))/sqrt(m*(1 + tan(theta)^2) "
+                                "+ J*theta'^2)", "part of the domain"),
+    ("sledge-L-star", "L_star"): ("sqrt(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + "
+                                  "J*theta'*Abs(theta'))", "complex values"),
+    ("sledge-reduced-equation", "theta_pp"): ("DOM:theta", "theta"),
+    ("sledge-reduced-equation", "last_term"): ("m*k^2*Abs(theta)*(1 + tan(theta)^2)",
+                                               "(for example at theta ="),
+    ("nielsen-form", "total_derivative"): ("DOM:rprimeprime", "part of the domain"),
+    ("nielsen-form", "nielsen"): ("DOM:rprimeprime", ""),       # a big expression: any hint
+    ("chaplygin-sleigh", "L_star"): ("sqrt(2*h - k^2*theta^2)*sqrt(m/cos(theta)^2 + "
+                                     "(J + m*b^2)*theta'*Abs(theta'))", "complex values"),
+    ("chaplygin-sleigh", "J_eff"): ("J + m*asin(sin(b))^2", "b"),
+    ("chaplygin-sleigh", "P_star"): ("DOM:thetaprime", "part of the domain"),
+    ("chaplygin-sleigh", "odd_part"): ("DOM:thetaprime", "part of the domain"),
+    ("turning-point", "xdot"): ("C*sqrt(1 - sin(theta)*Abs(sin(theta)))", "theta"),
+    ("turning-point", "t_turn"): ("sqrt(J)/k*asin(pi/(2*a))*sign(5 - a)", "a"),
+    ("turning-point", "x_turn"): (0.537, "too small by 0.054%"),
+    ("turning-point", "numerics"): ("nothing", "run red.simulate"),
+    ("work-precision", "nfev"): ("FLOAT:nfev+1", "too large by"),
+    ("work-precision", "method"): ("RK45 ", "nfev"),
+    ("work-precision", "why"): ("it is implicit", "explicit"),
+}
+
+
 def test_every_part_has_cases():
-    assert sorted(CASES) == sorted(ALL_PARTS)
+    assert sorted(CASES) == sorted(ALL_PARTS) == sorted(DOMAIN)
     for key, (good, bad) in CASES.items():
-        assert len(good) >= 2, key
-        assert len(bad) >= 3, key
+        assert len(good) + len(MORE_GOOD.get(key, [])) >= 3, key
+        assert len(bad) + 1 >= 4, key
+
+
+@pytest.mark.parametrize("key", sorted(MORE_GOOD), ids="/".join)
+def test_more_correct_forms_accepted(key):
+    ex, part = key
+    for answer in MORE_GOOD[key]:
+        f = check(ex, _answer(answer), part=part)
+        assert f.ok, (answer, f.message)
+
+
+@pytest.mark.parametrize("key", sorted(DOMAIN), ids="/".join)
+def test_right_on_part_of_the_domain_is_wrong(key):
+    """An answer right only on part of the stated domain is rejected, and the hint is honest."""
+    ex, part = key
+    answer, words = DOMAIN[key]
+    value = _domain_mutation(answer, ex, part) if str(answer).startswith("DOM:") else \
+        _answer(answer)
+    f = check(ex, value, part=part)
+    assert not f.ok, (answer, f.message)
+    assert words in f.message, (answer, f.message)
 
 
 @pytest.mark.parametrize("key", sorted(CASES), ids="/".join)
@@ -328,6 +459,86 @@ def test_bad_input_never_raises(key):
             assert f.status == "unanswered" and "not answered yet" in f.message
         elif f.status == "invalid":
             assert "expected" in f.message, (answer, f.message)
+
+
+DOS = ["diff(sin(theta), theta, 100000000)", "Derivative(sin(theta), theta, 100000000)",
+       "Pow(9, 387420489)", "Float(pi, 100000000)", "Float(1, 100000000)",
+       "exp(exp(exp(exp(100))))", "exp(exp(exp(exp(theta))))", "9^9^9", "10^(10^10)",
+       "(" * 500 + "x" + ")" * 500, "+".join(["x"] * 900), "sin(" * 300 + "x" + ")" * 300,
+       "2**3**4**5", "x**1000000", "sqrt(10**29)**3**100", "1" * 1999,
+       "1e308*1e308", "tan(10**29)", "exp(10**29)", "exp(theta*1e200)", "theta^(1/3)^9999",
+       "Derivative(theta(x), x, x, x, x, x)", "Rational(10**29, 3)**999"]
+
+
+def _dos_objects():
+    th = sp.Symbol("theta")
+    return [sp.Float(1, 10**5), sp.Integer(10)**10**4, sp.Derivative(sp.sin(th), (th, 10**8)),
+            sp.Pow(th, 10**9), sp.Add(*[sp.Symbol(f"s{i}") for i in range(6000)]),
+            sp.exp(sp.exp(sp.exp(sp.exp(th))))]
+
+
+@pytest.mark.parametrize("key", sorted(CASES), ids="/".join)
+def test_denial_of_service_answers_are_answered_quickly(key):
+    """Every check returns within 2 s, whatever the answer, and prints no huge number."""
+    import time
+    ex, part = key
+    check(ex, None, part=part)                     # the exercise is derived once, first
+    for answer in DOS + _dos_objects():
+        start = time.monotonic()
+        f = check(ex, answer, part=part)
+        took = time.monotonic() - start
+        assert took < 2.0, (str(answer)[:60], took)
+        assert isinstance(f, Feedback) and not f.ok and len(f.message) < 1000
+        assert not any(len(w) > 60 for w in f.message.split()), f.message
+
+
+def test_too_expensive_is_said_plainly():
+    f = check("kepler-orbit", "sin(" * 300 + "x" + ")" * 300, part="h")
+    assert f.status == "invalid" and "nested" in f.message
+    f = check("kepler-orbit", "Pow(9, 387420489)", part="h")
+    assert "not allowed" in f.message and "Pow" in f.message
+    f = check("kepler-orbit", "9^9^9", part="h")
+    assert "too large" in f.message and "1e300" in f.message
+    f = check("kepler-orbit", sp.Add(*[sp.Symbol(f"s{i}") for i in range(6000)]), part="h")
+    assert "too expensive to check; simplify it" in f.message
+
+
+def test_messages_read_well():
+    """Articles, no memory address, plain parse errors, exec, percentages."""
+    import numpy as np
+    f = check("kepler-orbit", object(), part="h")
+    assert "an object" in f.message and "0x" not in f.message
+    f = check("kepler-orbit", Ellipsis, part="h")
+    assert f.status == "unanswered"
+    f = check("kepler-orbit", np.array([1.0, 2.0]), part="h")
+    assert "numpy array of shape (2,)" in f.message
+    f = check("kepler-orbit", "(a + b", part="h")
+    assert "parenthesis opened at position 1 is never closed" in f.message
+    f = check("kepler-orbit", "a + b)", part="h")
+    assert "closed at position 6 was never opened" in f.message
+    f = check("kepler-orbit", "exec('1')", part="h")
+    assert "calls exec(...)" in f.message and "maths functions" in f.message
+    f = check("kepler-orbit", "2m*mu", part="h")
+    assert "write products with *" in f.message
+    f = check("kepler-orbit", "zeta*m", part="h")
+    assert f.message.count("expected") == 1 and "zeta" in f.message
+    x = float(EXERCISES["turning-point"].parts["x_turn"].expected)
+    for value, words in ((x * (1 + 1e-5), "0.001"), (x * 1.5, "50%"), (x * 400, "400 times"),
+                         (x * (1 - 3e-6), "0.00030%")):
+        f = check("turning-point", value, part="x_turn")
+        assert not f.ok and words in f.message and "inf%" not in f.message, f.message
+        assert "0.00%" not in f.message
+    f = check("work-precision", np.int64(3), part="method")
+    assert "an int64" in f.message
+    f = check("kepler-orbit", True, part="h")
+    assert "truth value" in f.message
+
+
+def test_success_messages_claim_only_what_the_answer_does():
+    f = check("kepler-orbit", "-m*mu*Abs(1 - e^2)/(2*p)", part="h")
+    assert not f.ok and "hyperbola" not in f.message and "e = " in f.message
+    f = check("kepler-orbit", "m*mu*(e**2 - 1)/(2*p)", part="h")
+    assert f.ok and "hyperbola (e > 1)" in f.message
 
 
 def test_bad_exercise_or_part():

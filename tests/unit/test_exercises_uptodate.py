@@ -67,6 +67,10 @@ def test_stored_checks_say_what_they_should(ex_id):
     assert code[0].source.startswith("from whittaker_teach.notebook import setup; setup()")
     assert code[-1].source.lstrip().startswith("check(")
     text = "\n".join(c.source for c in student.cells if c.cell_type == "markdown")
+    # the grader finds the exercise, and the student reads how to hand it in
+    assert student.metadata["whittaker_teach"] == {"exercise": ex_id}
+    assert "Handing in" in text and "Download" in text and ".ipynb" in text
+    assert "python -m whittaker_teach grade" in text
     assert "Assumptions" in text and "(1." in text or "(2." in text or "(3." in text
     # no solution leaks into the student notebook
     student_code = "\n".join(c.source for c in code)
@@ -108,7 +112,9 @@ def test_placeholders_replace_solutions():
            "# %%\ncheck('demo', a)\n")
     student, solution = make_exercises.build("demo", src)
     assert [c.source for c in student.cells] == [
-        "Do it.", "import math\na = None  # your answer here\na", "check('demo', a)"]
+        "Do it.", "import math\na = None  # your answer here\na", "check('demo', a)",
+        make_exercises.HAND_IN]
+    assert student.metadata["whittaker_teach"] == {"exercise": "demo"}
     sources = [c.source for c in solution.cells]
     assert sources[0].startswith(":::{exercise}\n:label: ex-demo")
     assert sources[1].startswith("```{solution-start} ex-demo\n:class: dropdown")

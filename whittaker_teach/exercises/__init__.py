@@ -19,7 +19,11 @@ as ``red.L_star``, or a string such as ``"sqrt(2*h)*..."``; ``theta(x)`` or
 ``theta``, ``Derivative(theta(x), x)`` or ``thetaprime`` or ``theta'``), and
 never raises: a wrong answer gets a hint that names the kind of difference
 (a wrong sign, a missing factor, a wrong power, a symbol it should not
-contain), an unreadable one a message saying what was expected.
+contain), an unreadable one a message saying what was expected.  A number
+may be of any common kind (Python, ``fractions``, SymPy, numpy, mpmath).
+Every check is bounded (:mod:`.limits`): it answers within 2 s whatever it
+is given, if need be with "this answer is too expensive to check; simplify
+it".
 
 The expected answers are derived from the library on the first check of
 each exercise (about a second), not on import.
@@ -28,6 +32,7 @@ each exercise (about a second), not on import.
 from __future__ import annotations
 
 from .feedback import Feedback
+from .limits import TooExpensive
 
 __all__ = ["check", "exercises", "parts", "Feedback"]
 
@@ -55,12 +60,40 @@ def check(exercise_id, answer, part=None):
     raises; ``None`` (the placeholder of the student notebooks) gives "not
     answered yet".
     """
+    import os
+    if os.environ.get("WHITTAKER_TEACH_CHECK_LOG"):
+        # graded: record the answer only; the grader checks it in its own process
+        feedback = Feedback(False, "recorded for grading", str(exercise_id)[:40],
+                            part if isinstance(part, str) else None,
+                            "unanswered" if answer is None or answer is Ellipsis else "invalid")
+        _record(feedback, answer)
+        return feedback
     try:
-        return _check(exercise_id, answer, part)
-    except Exception as exc:  # noqa: BLE001 - a checker must answer, whatever it is given
-        return Feedback(False, f"The checker could not check this answer ({type(exc).__name__}: "
-                        f"{str(exc)[:200]}); please report it", str(exercise_id)[:40],
-                        part if isinstance(part, str) else None, "invalid")
+        feedback = _check(exercise_id, answer, part)
+    except (Exception, TooExpensive) as exc:  # noqa: BLE001 - a checker must answer
+        where = (exercise_id[:40] if isinstance(exercise_id, str) else "",
+                 part[:40] if isinstance(part, str) else None)
+        if isinstance(exc, TooExpensive):
+            feedback = Feedback(False, "This answer is too expensive to check; simplify it.",
+                                *where, "invalid")
+        else:
+            feedback = Feedback(False, "The checker could not check this answer "
+                                f"({type(exc).__name__}); please report it", *where, "invalid")
+    return feedback
+
+
+def _record(feedback, answer):
+    """Append the answer to the file WHITTAKER_TEACH_CHECK_LOG (set by ``grade``)."""
+    import os
+    path = os.environ.get("WHITTAKER_TEACH_CHECK_LOG")
+    if not path:
+        return
+    from .grade import record_line
+    try:
+        with open(path, "a", encoding="utf-8") as out:
+            out.write(record_line(feedback, answer) + "\n")
+    except OSError:
+        pass
 
 
 def _check(exercise_id, answer, part):

@@ -19,10 +19,14 @@ from .specs import Exercise, Names, Part, plain
 
 __all__ = ["EXERCISES"]
 
+# The sampling covers every range the statements allow (compare.Domain spreads
+# the points over each range): an angle the statement does not restrict over a
+# whole turn, one it restricts to |theta| < pi/2 over all of that interval.
 POSITIVE = (0.5, 2.0)       # masses, moments of inertia, lengths, constants
-ANGLE = (-1.2, 1.2)         # |theta| < pi/2: away from cos(theta) = 0
-SLOPE = (-1.5, 1.5)         # q' = dq/dq_eps
-SPEED = (0.2, 2.0)          # qdot_eps > 0: the direction of travel
+ANGLE = (-1.5707, 1.5707)   # |theta| < pi/2, as the sledge statements say
+TURN = (-3.1415, 3.1415)    # an angle the statement does not restrict: a whole turn
+SLOPE = (-3.0, 3.0)         # q' = dq/dq_eps
+SPEED = (0.05, 3.0)         # qdot_eps > 0: the direction of travel
 ENERGY = (0.5, 4.0)
 
 
@@ -58,8 +62,8 @@ def _projectile_path():
     x, y, yp, ypp, h, m, g, v0, alpha = (names[n] for n in
                                          "x y yprime yprimeprime h m g v0 alpha".split())
     red = wt.examples.projectile().reduce("x", +1)
-    dom = Domain({x: (0.0, 2.0), y: (-1.0, 1.0), yp: SLOPE, ypp: (-1.0, 1.0), h: ENERGY,
-                  m: POSITIVE, g: POSITIVE, v0: POSITIVE, alpha: (0.1, 1.4)},
+    dom = Domain({x: (0.0, 3.0), y: (-1.0, 1.0), yp: SLOPE, ypp: (-1.0, 1.0), h: ENERGY,
+                  m: POSITIVE, g: POSITIVE, v0: POSITIVE, alpha: (0.001, 1.5707)},
                  conditions=(h - m * g * y,))
     path = x * sp.tan(alpha) - g * x**2 / (2 * v0**2 * sp.cos(alpha)**2)
     parts = [
@@ -92,8 +96,9 @@ def _kepler_orbit():
     acc = plain(_one(red.accelerations()), names)
     # the conic at phi = pi/2 (r = p, r' = p e, r'' = 2 p e^2) in (1.27) fixes h
     (h_conic,) = sp.solve(2 * p * e**2 - acc.xreplace({r: p, rp: p * e}), h)
-    dom = Domain({r: (0.5, 3.0), rp: SLOPE, rpp: (-1.0, 1.0), phi: (-3.0, 3.0), h: (-1.0, 3.0),
-                  m: POSITIVE, mu: POSITIVE, p: POSITIVE, e: (0.0, 0.9)},
+    # e >= 0: ellipses, the parabola and hyperbolas
+    dom = Domain({r: (0.5, 3.0), rp: SLOPE, rpp: (-1.0, 1.0), phi: TURN, h: (-1.0, 3.0),
+                  m: POSITIVE, mu: POSITIVE, p: POSITIVE, e: (0.0, 3.0)},
                  conditions=(h + m * mu / r,))
     parts = [
         Part("L_star", "L* (1.16) for the Kepler problem with phi in place of t",
@@ -108,8 +113,8 @@ def _kepler_orbit():
              h_conic, (m, mu, p, e),
              why_not={"phi": "h is a constant", "r": "h is a constant of the orbit",
                       "rprime": "h is a constant of the orbit"},
-             success="h = -m mu (1 - e^2)/(2 p): negative for an ellipse (e < 1), zero for a "
-             "parabola, positive for a hyperbola."),
+             success="h = -m mu (1 - e^2)/(2 p), for every e >= 0: negative for an ellipse "
+             "(e < 1), zero for a parabola (e = 1), positive for a hyperbola (e > 1)."),
     ]
     return names, dom, parts
 
@@ -122,7 +127,7 @@ def _omega_and_energy():
         names[n] for n in "theta thetadot phi phiprime phidot h m R A C k".split())
     red = wt.examples.rolling_disk().reduce("theta", +1)
     Omega = plain(red.Omega, names)
-    dom = Domain({th: (-3.0, 3.0), thd: SPEED, ph: ANGLE, php: SLOPE, phd: SLOPE, h: ENERGY,
+    dom = Domain({th: TURN, thd: SPEED, ph: TURN, php: SLOPE, phd: SLOPE, h: ENERGY,
                   m: POSITIVE, R: POSITIVE, A: POSITIVE, C: POSITIVE, k: POSITIVE},
                  conditions=(2 * h - k**2 * ph**2,))
     no_phidot = "use (1.5): phidot = thetadot phi'"
@@ -156,7 +161,7 @@ def _identity_1_19():
     dv = sp.Symbol("dv")
     (dv_dqp,) = sp.solve(v * Ovv * dv + v * Ov.diff(thp) - Op, dv)
     dL = Ovv * dv_dqp + Ov.diff(thp)                 # (1.17)
-    dom = Domain({x: (0.0, 2.0), v: SPEED, th: ANGLE, thp: SLOPE, h: ENERGY, m: POSITIVE,
+    dom = Domain({x: (0.0, 2.0), v: SPEED, th: TURN, thp: SLOPE, h: ENERGY, m: POSITIVE,
                   J: POSITIVE, b: POSITIVE, k: POSITIVE})
     keep_v = "keep xdot as a symbol: it stands for qdot_eps(q', q, h) of (1.12)"
     parts = [
@@ -290,7 +295,7 @@ def _nielsen_form():
     red = wt.examples.kepler().reduce("phi", +1)
     Ls = plain(red.L_star, names)
     dL = _total(Ls, phi, [(r, rp, rpp)])                                  # (2.1)
-    dom = Domain({r: (0.5, 3.0), rp: SLOPE, rpp: (-1.0, 1.0), phi: (-3.0, 3.0), h: (-1.0, 3.0),
+    dom = Domain({r: (0.5, 3.0), rp: SLOPE, rpp: (-1.0, 1.0), phi: TURN, h: (-1.0, 3.0),
                   m: POSITIVE, mu: POSITIVE}, conditions=(h + m * mu / r,))
     parts = [
         Part("total_derivative", "dL*/dphi (2.1), with r'' in it", dL, (r, rp, rpp, h, m, mu),
@@ -369,7 +374,7 @@ def _turning_point():
     t_turn = math.asin(math.pi / (2 * TURNING["a"])) / omega
     x_turn = sp.Float(ex(t_turn)["x"], 15)
     dom = Domain({names["x"]: (0.0, 2.0), th: ANGLE, names["thetaprime"]: SLOPE,
-                  names["t"]: (0.0, 3.0), names["h"]: ENERGY, C: POSITIVE, a: (1.6, 3.0),
+                  names["t"]: (0.0, 3.0), names["h"]: ENERGY, C: POSITIVE, a: (1.5709, 6.0),
                   names["m"]: POSITIVE, J: POSITIVE, k: POSITIVE})
     see = "run red.simulate across the turning point and read what happens"
     parts = [

@@ -1,22 +1,27 @@
 """Is an answer equal to the right one, and if not, what kind of difference is it?
 
-Equality is decided by evaluation at random admissible points, with mpmath
-at 30 digits: the points respect the exercise's assumptions (positive
-masses, the direction of travel, an energy above the potential), so any
-form of the right answer (``1 + tan(theta)**2`` or ``sec(theta)**2``,
-expanded or factored, ``sqrt(a)*sqrt(b)`` or ``sqrt(a*b)``) agrees with it
-to about 28 digits at every point, and a wrong answer does not.  This is
-the method of the library's own checks (``whittaker_teach.verify``); an
-identity that fails only outside the sampled box is not seen.
+Equality is decided by evaluation at admissible points spread over the
+whole domain the exercise states (:meth:`Domain.sample`: every range is cut
+into slices and each slice gets a point, so an angle is tried all round the
+circle and ``e`` up to its largest value), with mpmath at 30 digits: the
+points respect the exercise's assumptions (positive masses, the direction of
+travel, an energy above the potential), so any form of the right answer
+(``1 + tan(theta)**2`` or ``sec(theta)**2``, expanded or factored,
+``sqrt(a)*sqrt(b)`` or ``sqrt(a*b)``) agrees with it to about 28 digits at
+every point, and a wrong answer, or one right on only part of the domain
+(``sqrt(1 - sin(theta)**2)`` for ``cos(theta)``), does not.  The evaluation
+is guarded (:class:`_Fn`): a value beyond 1e300 (``exp(exp(exp(100)))``) is
+never computed.
 
 When the answer is wrong, :func:`compare` looks for a simple explanation,
 in this order: complex values where the right answer is real, a wrong sign,
 a constant factor, a factor that is a power of one or more symbols (a
 missing factor, a wrong power), the answer being a power of the right one,
-a wrong power of one factor, one term with the wrong sign, missing or
-changed, an extra term, an additive constant; otherwise it says which
-symbols the difference depends on.  The hints name the kind of difference,
-not the right answer.
+a wrong power of one factor, one term with the wrong sign (everywhere, or on
+part of the domain), missing or changed, an extra term, a difference inside
+one factor (a square root, a denominator), an additive constant, an answer
+right at some points only; otherwise it says which symbols the difference
+depends on.  The hints name the kind of difference, not the right answer.
 
 >>> import sympy as sp
 >>> th, k = sp.symbols("theta k", positive=True)
@@ -37,7 +42,9 @@ from dataclasses import dataclass, field
 import mpmath
 import sympy as sp
 
-__all__ = ["Domain", "Verdict", "compare", "depends_on"]
+from .limits import TOO_EXPENSIVE, TooExpensive
+
+__all__ = ["Domain", "Verdict", "compare", "equal", "depends_on"]
 
 DPS = 30
 TOL = mpmath.mpf(10) ** -10   # relative: exact forms agree to ~28 digits, floats to ~15
@@ -62,6 +69,7 @@ class Domain:
         self.symbols = sorted([*self.ranges, *self.derived], key=str)
         self._cond = None
         self._der = None
+        self._points = {}
 
     def _compiled(self):
         if self._cond is None:
@@ -92,16 +100,33 @@ class Domain:
                 pt[s] = mpmath.mpmathify(fn(*[pt[b] for b in base]))
         return pt
 
+    def points(self, seed, n=POINTS):
+        """The n sample points of a seed (kept: every check of a part uses the same)."""
+        key = (seed, n)
+        if key not in self._points:
+            self._points[key] = self.sample(random.Random(seed), n)
+        return [dict(p) for p in self._points[key]]
+
     def sample(self, rng, n=POINTS):
+        """n admissible points, spread over every range (Latin hypercube batches).
+
+        Each batch of n candidates takes, for each symbol, one value from
+        each of n equal slices of its range, so that the points reach the
+        ends of every range (an angle over its full period, e up to its
+        largest stated value) instead of clustering by chance.
+        """
         pts = []
-        for _ in range(200 * n):
-            pt = {s: mpmath.mpf(rng.uniform(lo, hi)) for s, (lo, hi) in
-                  sorted(self.ranges.items(), key=lambda kv: str(kv[0]))}
-            self.complete(pt)
-            if self.admissible(pt):
-                pts.append(pt)
-                if len(pts) == n:
-                    return pts
+        items = sorted(self.ranges.items(), key=lambda kv: str(kv[0]))
+        for _ in range(200):
+            strata = {s: rng.sample(range(n), n) for s, _ in items}
+            for i in range(n):
+                pt = {s: mpmath.mpf(lo + (hi - lo) * (strata[s][i] + rng.random()) / n)
+                      for s, (lo, hi) in items}
+                self.complete(pt)
+                if self.admissible(pt):
+                    pts.append(pt)
+                    if len(pts) == n:
+                        return pts
         raise RuntimeError("the exercise's domain has too few admissible points")
 
 
@@ -112,30 +137,193 @@ class Verdict:
 
 
 class _Fn:
-    """An expression as a function of a point (dict), at DPS digits; None where undefined."""
+    """An expression as a function of a point (dict), at DPS digits; None where undefined.
+
+    The expression is compiled once into a list of steps (equal subexpressions
+    shared), evaluated with mpmath and guarded: a step whose value would be
+    beyond 1e300 (``exp(exp(exp(100)))``, ``2**(10**9*theta)``) is undefined
+    at that point (and ``huge`` is set) instead of being computed, so that no
+    evaluation can run away.
+    """
 
     def __init__(self, expr, syms):
         self.expr = expr
-        self.syms = syms
-        try:
-            self._f = sp.lambdify(syms, expr, modules="mpmath")
-        except Exception:  # noqa: BLE001 - a printer gap: fall back to evalf
-            self._f = None
+        self.syms = list(syms)
+        self.huge = False
+        self.steps = []
+        index = {}
+        pos = {s: i for i, s in enumerate(self.syms)}
+
+        def visit(e):
+            j = index.get(e)
+            if j is not None:
+                return j
+            if e.is_Symbol:
+                step = ("symbol", pos[e]) if e in pos else ("unknown", e)
+            elif e.is_Number or e.is_NumberSymbol or e is sp.I:
+                with mpmath.workdps(DPS):
+                    step = ("const", mpmath.mpmathify(complex(e)) if e.has(sp.I)
+                            else mpmath.mpf(e.evalf(DPS + 5)))
+            elif e.is_Pow and e.exp.is_Integer and abs(e.exp) <= 1000:
+                step = (_int_pow, [visit(e.base)], int(e.exp))
+            elif e.is_Pow and e.exp.is_Rational and e.exp.q == 2 and abs(e.exp) <= 1000:
+                step = (_half_pow, [visit(e.base)], int(e.exp.p))
+            else:
+                step = (type(e), [visit(a) for a in e.args], e)
+            index[e] = len(self.steps)
+            self.steps.append(step)
+            return index[e]
+
+        self.out = visit(expr)
 
     def __call__(self, pt):
+        vals = [None] * len(self.steps)
         with mpmath.workdps(DPS):
             try:
-                if self._f is not None:
-                    v = self._f(*[pt[s] for s in self.syms])
-                else:
-                    v = sp.N(self.expr.xreplace({s: sp.Float(pt[s], DPS) for s in self.syms}),
-                             DPS)
-                v = mpmath.mpmathify(complex(v) if isinstance(v, sp.Basic) else v)
-            except Exception:  # noqa: BLE001 - undefined at this point
+                for i, step in enumerate(self.steps):
+                    kind = step[0]
+                    if kind == "symbol":
+                        v = pt[self.syms[step[1]]]
+                    elif kind == "const":
+                        v = step[1]
+                    elif kind == "unknown":
+                        return None
+                    elif kind is _int_pow or kind is _half_pow:
+                        v = kind(vals[step[1][0]], step[2])
+                    else:
+                        v = _apply(kind, [vals[j] for j in step[1]], step[2])
+                    vals[i] = v
+            except _Huge:
+                self.huge = True
                 return None
+            except (ZeroDivisionError, ValueError, TypeError, OverflowError, ArithmeticError):
+                return None
+            v = mpmath.mpmathify(vals[self.out])
             if not (mpmath.isfinite(mpmath.re(v)) and mpmath.isfinite(mpmath.im(v))):
                 return None
+            if abs(v) > _HUGE:
+                self.huge = True
+                return None
             return mpmath.mpc(v)
+
+
+class _Huge(Exception):
+    pass
+
+
+_HUGE = mpmath.mpf(10) ** 300
+_EXP_MAX = 690            # exp(690) ~ 1e300
+
+
+def _exp(z):
+    if mpmath.re(z) > _EXP_MAX:
+        raise _Huge()
+    if mpmath.re(z) < -10**5:
+        return mpmath.mpf(0)
+    return mpmath.exp(z)
+
+
+def _pow(b, e):
+    if e == int(mpmath.re(e)) and mpmath.im(e) == 0 and abs(e) <= 1000:
+        n = int(mpmath.re(e))
+        if n < 0 and b == 0:
+            raise ZeroDivisionError
+        return b ** n
+    if e == mpmath.mpf(0.5):
+        return mpmath.sqrt(b)
+    if b == 0:
+        if mpmath.re(e) > 0:
+            return mpmath.mpf(0)
+        raise ZeroDivisionError
+    return _exp(e * mpmath.log(b))
+
+
+def _int_pow(b, n):
+    if n < 0 and b == 0:
+        raise ZeroDivisionError
+    return b ** n
+
+
+def _half_pow(b, n):
+    """b**(n/2), the principal branch (as SymPy's)."""
+    r = mpmath.sqrt(b)
+    if n < 0 and r == 0:
+        raise ZeroDivisionError
+    return r ** n
+
+
+def _trig(f):
+    def g(args, e):
+        if abs(args[0]) > 10**8:     # argument reduction would need huge precision
+            raise _Huge()
+        return f(args[0])
+    return g
+
+
+def _fn1(f):
+    return lambda args, e: f(args[0])
+
+
+def _cosh(z):
+    return (_exp(z) + _exp(-z)) / 2
+
+
+def _sinh(z):
+    return (_exp(z) - _exp(-z)) / 2
+
+
+def _reciprocal(f):
+    def g(args, e):
+        if abs(args[0]) > 10**8:
+            raise _Huge()
+        v = f(args[0])
+        if v == 0:
+            raise ZeroDivisionError
+        return 1 / v
+    return g
+
+
+def _log(args, e):
+    if args[0] == 0:
+        raise ZeroDivisionError
+    if len(args) == 2:
+        return mpmath.log(args[0]) / mpmath.log(args[1])
+    return mpmath.log(args[0])
+
+
+def _real(z):
+    if mpmath.im(z) != 0:
+        raise ValueError("complex argument")
+    return mpmath.re(z)
+
+
+_APPLY = {
+    sp.Add: lambda args, e: mpmath.fsum(args),
+    sp.Mul: lambda args, e: mpmath.fprod(args),
+    sp.Pow: lambda args, e: _pow(*args),
+    sp.exp: _fn1(_exp), sp.log: _log,
+    sp.sin: _trig(mpmath.sin), sp.cos: _trig(mpmath.cos), sp.tan: _trig(mpmath.tan),
+    sp.sec: _reciprocal(mpmath.cos), sp.csc: _reciprocal(mpmath.sin),
+    sp.cot: _reciprocal(mpmath.tan),
+    sp.asin: _fn1(mpmath.asin), sp.acos: _fn1(mpmath.acos), sp.atan: _fn1(mpmath.atan),
+    sp.atan2: lambda args, e: mpmath.atan2(_real(args[0]), _real(args[1])),
+    sp.sinh: _fn1(_sinh), sp.cosh: _fn1(_cosh), sp.tanh: _trig(mpmath.tanh),
+    sp.Abs: _fn1(abs), sp.sign: _fn1(mpmath.sign),
+    sp.re: _fn1(mpmath.re), sp.im: _fn1(mpmath.im),
+}
+
+
+def _apply(kind, args, e):
+    f = _APPLY.get(kind)
+    if f is not None:
+        return f(args, e)
+    # a function without a rule here (from a library result): SymPy at these values
+    if isinstance(e, sp.Function) and len(args) <= 3:
+        v = e.func(*[sp.Float(a, DPS) if mpmath.im(a) == 0 else
+                     sp.Float(mpmath.re(a), DPS) + sp.I * sp.Float(mpmath.im(a), DPS)
+                     for a in args]).evalf(DPS)
+        return mpmath.mpmathify(complex(v))
+    raise ValueError(f"cannot evaluate {kind.__name__}")
 
 
 def _close(u, v):
@@ -297,6 +485,37 @@ def _expanded_terms(expr, limit=30):
     return list(terms) if len(terms) <= limit else []
 
 
+_COMPILED = {}
+
+
+def _compiled(expr, syms):
+    """_Fn of a right answer, compiled once (answers are compiled at each check)."""
+    key = (expr, tuple(syms))
+    if key not in _COMPILED:
+        if len(_COMPILED) > 500:
+            _COMPILED.clear()
+        _COMPILED[key] = _Fn(expr, syms)
+    return _COMPILED[key]
+
+
+def equal(answer, expected, domain, seed=0, tol=None):
+    """Is answer equal to expected on the domain's sample points (no hint)?"""
+    syms = domain.symbols
+    pts = domain.points(seed)
+    fa, fe = _Fn(answer, syms), _compiled(expected, syms)
+    rel = TOL if tol is None else mpmath.mpf(tol)
+    n = 0
+    for p in pts:
+        e = fe(p)
+        if e is None:
+            continue
+        a = fa(p)
+        if a is None or abs(a - e) > rel * max(1, abs(a), abs(e)):
+            return False
+        n += 1
+    return n >= 3
+
+
 def compare(answer, expected, domain, seed=0, sign_note="", tol=None):
     """Compare two expressions of the domain's symbols: a :class:`Verdict`.
 
@@ -304,9 +523,8 @@ def compare(answer, expected, domain, seed=0, sign_note="", tol=None):
     number, such as where an integrator stopped, needs a looser one).
     """
     syms = domain.symbols
-    rng = random.Random(seed)
-    pts = domain.sample(rng)
-    fa, fe = _Fn(answer, syms), _Fn(expected, syms)
+    pts = domain.points(seed)
+    fa, fe = _Fn(answer, syms), _compiled(expected, syms)
     A = [fa(p) for p in pts]
     E = [fe(p) for p in pts]
     keep = [i for i, e in enumerate(E) if e is not None]
@@ -318,6 +536,19 @@ def compare(answer, expected, domain, seed=0, sign_note="", tol=None):
     rel = TOL if tol is None else mpmath.mpf(tol)
     if all(a is not None and abs(a - e) <= rel * max(1, abs(a), abs(e)) for a, e in zip(A, E)):
         return Verdict(True)
+    if fa.huge:
+        return Verdict(False, "your answer takes values beyond 1e300 at some admissible values "
+                       f"of the symbols, where the right one does not: {TOO_EXPENSIVE}")
+    try:
+        return _explain(answer, expected, domain, sign_note, fa, fe, pts, A, E)
+    except TooExpensive:
+        return Verdict(False, "your answer is not equal to the right one (finding what kind of "
+                       "difference it is took too long)")
+
+
+def _explain(answer, expected, domain, sign_note, fa, fe, pts, A, E):
+    """The kind of difference between a wrong answer and the right one: a Verdict."""
+    syms = domain.symbols
     if any(a is None for a in A):
         return Verdict(False, "your answer cannot be evaluated at some admissible values of the "
                        "symbols (a division by zero or a logarithm of zero?), where the right "
@@ -333,6 +564,9 @@ def compare(answer, expected, domain, seed=0, sign_note="", tol=None):
         return Verdict(False, f"the right answer is identically 0 and yours is not{extra}")
     if all(abs(a) <= TOL for a in A):
         return Verdict(False, "your answer is 0, and the right one is not")
+    part = _part_of_domain(answer, A, E, pts)       # cheap, and the most useful then
+    if part:
+        return Verdict(False, part)
     p0 = pts[0]
     with mpmath.workdps(DPS):
         R = [a / e if abs(e) > TOL else None for a, e in zip(A, E)]
@@ -373,7 +607,8 @@ def compare(answer, expected, domain, seed=0, sign_note="", tol=None):
                        f"by {abs(k)}"
             return Verdict(False, f"your answer is {_power_text(b, k)} times the right one, "
                            f"up to sign: {what}")
-    hint = _term_hint(answer, expected, fa, fe, syms, pts, domain)
+    hint = _term_hint(answer, expected, fa, fe, syms, pts, domain) or \
+        _inner_hint(answer, expected, fa, fe, syms, pts, domain)
     if hint:
         return Verdict(False, hint)
     with mpmath.workdps(DPS):
@@ -425,6 +660,10 @@ def _term_hint(answer, expected, fa, fe, syms, pts, domain):
                 if any(abs(t) <= TOL for t in T):
                     continue
                 Q = [(a - e + t) / t for a, e, t in zip(A, E, T)]
+                if one and not all(_close(q, Q[0]) for q in Q):
+                    flip = _sign_flip(Q, pts, terms[subset[0]])
+                    if flip:
+                        return flip
                 if not all(_close(q, Q[0]) for q in Q):
                     continue
                 c = _nice(Q[0])
@@ -438,7 +677,15 @@ def _term_hint(answer, expected, fa, fe, syms, pts, domain):
                     f"{len(subset)} terms of your answer are"
                 return f"{what} {c} times what {'it' if one else 'they'} should be"
             for subset in _subsets(len(terms)):
+                if len(subset) > 4:          # up to four terms: the rest is too costly
+                    continue
                 one = len(subset) == 1
+                T = [mpmath.fsum(vals[j][i] for j in subset) for i in range(len(pts))]
+                if any(abs(t) <= TOL for t in T):
+                    continue
+                Q = [(a - e + t) / t for a, e, t in zip(A, E, T)]
+                if all(_close(v, 1) for v in Q):
+                    continue
                 ft = _Fn(sp.Add(*[terms[j] for j in subset]), syms)
 
                 def q(p, ft=ft):
@@ -446,9 +693,6 @@ def _term_hint(answer, expected, fa, fe, syms, pts, domain):
                     if a is None or e is None or tt is None or abs(tt) <= TOL:
                         return None
                     return (a - e + tt) / tt
-                Q = [q(p) for p in pts]
-                if any(v is None for v in Q) or all(_close(v, 1) for v in Q):
-                    continue
                 what = "one term of your answer" if one else f"{len(subset)} terms of your answer"
                 mono = _monomial(q, pts[0], pts, syms, domain)
                 if mono is not None:
@@ -472,3 +716,118 @@ def _term_hint(answer, expected, fa, fe, syms, pts, domain):
                                                          zip(A, U, E)):
                     return "your answer has an extra term"
     return ""
+
+
+def _where(k):
+    if k == sp.Rational(1, 2):
+        return "inside the square root"
+    if k == -sp.Rational(1, 2):
+        return "inside the square root in the denominator"
+    if k == -1:
+        return "in the denominator"
+    if k == 1:
+        return "in the factor"
+    return f"inside the factor raised to the power {k}"
+
+
+def _factors(expr):
+    """[(base, exponent)] of the factors of expr whose base is a sum (not expr itself)."""
+    out = []
+    factors = sp.Mul.make_args(expr)
+    for f in factors:
+        b, k = f.as_base_exp()
+        if k == 1 and len(factors) == 1:
+            continue
+        if isinstance(b, sp.Add) and b.free_symbols and k.is_Rational and (b, k) not in out:
+            out.append((b, k))
+    return out
+
+
+def _inner_hint(answer, expected, fa, fe, syms, pts, domain):
+    """Is the difference inside one factor (a square root, a denominator)? Say what it is there.
+
+    Looks for a factor (a sum under a power: sqrt(...), 1/(...)) of the
+    answer and one of the right answer, with the same power, such that the
+    answer is the right one with that factor replaced; then explains the
+    difference between the two sums (a wrong power of a symbol in a term, a
+    term with the wrong sign, a missing term).
+    """
+    mine, right = _factors(answer), _factors(expected)
+    with mpmath.workdps(DPS):
+        for bb, kb in mine:
+            for be, ke in right:
+                if kb != ke or bb == be:
+                    continue
+                fb, fbe = _Fn(bb, syms), _Fn(be, syms)
+                ok = True
+                for p in pts:
+                    a, e, u, w = fa(p), fe(p), fb(p), fbe(p)
+                    if None in (a, e, u, w) or abs(w) <= TOL or abs(e) <= TOL:
+                        ok = False
+                        break
+                    if not _close(a / e, _pow(u / w, mpmath.mpf(ke.p) / ke.q)):
+                        ok = False
+                        break
+                if not ok:
+                    continue
+                where = f"{_where(ke)} ({_shorten(bb)})"
+                inner = _term_hint(bb, be, fb, fbe, syms, pts, domain)
+                if not inner:
+                    def ratio(p, fb=fb, fbe=fbe):
+                        u, w = fb(p), fbe(p)
+                        return None if u is None or w is None or abs(w) <= TOL else u / w
+                    mono = _monomial(ratio, pts[0], pts, syms, domain)
+                    if mono is not None:
+                        inner = _monomial_text(*mono, what="that sum", ref="the right one")
+                if not inner:
+                    used = [str(s) for s in syms
+                            if depends_on(lambda p: _diff(fb, fbe, p), s, pts[0], pts, domain)]
+                    inner = "that sum is not the right one" + \
+                        (f"; the difference depends on {', '.join(used)}" if used else "")
+                inner = inner.replace("your answer", "that sum")
+                return f"the rest is right, but {where}: {inner}"
+    return ""
+
+
+def _diff(f, g, p):
+    a, b = f(p), g(p)
+    return None if a is None or b is None else a - b
+
+
+def _shorten(e, n=60):
+    text = sp.sstr(e)
+    return text if len(text) <= n else text[:n - 3] + "..."
+
+
+def _sign_flip(Q, pts, term):
+    """One term right at some points and of the wrong sign at others: say where."""
+    plus = [i for i, q in enumerate(Q) if _close(q, 1)]
+    minus = [i for i, q in enumerate(Q) if _close(q, -1)]
+    if not plus or not minus or len(plus) + len(minus) != len(Q):
+        return ""
+    p = pts[minus[0]]
+    at = ", ".join(f"{s} = {float(mpmath.re(p[s])):.3g}"
+                   for s in sorted(term.free_symbols, key=str) if s in p)
+    return ("one term of your answer has the right size but the wrong sign on part of the "
+            f"domain (for example at {at}), and is right elsewhere: check a root of a square "
+            "(sqrt(x**2) is |x|, sqrt(1 - sin(x)**2) is |cos(x)|) or the branch of an inverse "
+            "function (asin(sin(x)) is x only for |x| <= pi/2)")
+
+
+def _part_of_domain(answer, A, E, pts):
+    """Right at some sample points, wrong at others: say so, with a point where it is wrong."""
+    right = [i for i, (a, e) in enumerate(zip(A, E)) if _close(a, e)]
+    if not right or len(right) == len(A):
+        return ""
+    wrong = [i for i in range(len(A)) if i not in right][0]
+    p = pts[wrong]
+    branchy = set()
+    for f in answer.atoms(sp.Abs, sp.sign, sp.asin, sp.acos, sp.atan, sp.Pow):
+        if not f.is_Pow or (f.exp.is_Rational and not f.exp.is_Integer):
+            branchy |= f.free_symbols
+    shown = sorted(branchy or answer.free_symbols, key=str)[:4]
+    at = ", ".join(f"{s} = {float(mpmath.re(p[s])):.3g}" for s in shown if s in p)
+    return ("your answer is right at some admissible values and wrong at others (for example "
+            f"at {at}): it holds on only part of the domain the exercise states; check a root "
+            "of a square (sqrt(x**2) is |x|) or the branch of an inverse function (asin(sin(x)) "
+            "is x only for |x| <= pi/2)")

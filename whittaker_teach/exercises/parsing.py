@@ -1,44 +1,61 @@
-"""Reading an answer: safe parsing of strings, and one notation for every form.
+"""Reading an answer: safe, bounded parsing of strings, and one notation for every form.
 
 A student may answer with a SymPy expression (built by hand, or taken from
 the library, e.g. ``red.L_star`` with ``theta(x)`` and
-``Derivative(theta(x), x)``) or with a string such as
+``Derivative(theta(x), x)``), with a number of any common kind (Python,
+``fractions``, SymPy, numpy and mpmath scalars), or with a string such as
 ``"sqrt(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + J*theta'^2)"``.
 
-Strings are parsed by SymPy's ``parse_expr`` with no builtins, a short list
-of allowed functions, no attribute access (``.`` before a letter), no
-dunder names, a length limit and a bound on the size of numbers, so that no
-arbitrary code runs.  Every answer is then rewritten in plain symbols:
-``theta(x)`` -> ``theta``, ``Derivative(theta(x), x)`` -> ``thetaprime``,
-``Derivative(x(t), t)`` -> ``xdot``; ``theta'`` in a string is
-``thetaprime``.
+Strings are never evaluated as Python.  SymPy's tokenizer turns the text
+into code (names become ``Symbol('...')``, numbers ``Integer``/``Float``),
+Python's :mod:`ast` parses that code, and :class:`_Builder` walks the tree,
+building the expression node by node: only arithmetic, the maths functions
+of ``ALLOWED_FUNCTIONS`` and coordinates such as ``theta(x)`` are accepted,
+and the limits of :mod:`.limits` (digits of integers and Floats, size of
+powers, order of derivatives, nesting depth, size) are enforced *before*
+each node is built, so that ``Pow(9, 387420489)`` or
+``diff(sin(theta), theta, 100000000)`` are refused at once.  Every answer is
+then rewritten in plain symbols: ``theta(x)`` -> ``theta``,
+``Derivative(theta(x), x)`` -> ``thetaprime``, ``Derivative(x(t), t)`` ->
+``xdot``; ``theta'`` in a string is ``thetaprime``.
 
 >>> read_answer("sqrt(2*h - k^2*theta^2)")
 sqrt(2*h - k**2*theta**2)
 >>> read_answer("J*theta'^2")
 J*thetaprime**2
->>> try:
-...     read_answer("__import__('os')")
-... except AnswerError as err:
-...     print(err)
+>>> for text in ["__import__('os')", "exec('1')", "(a + b", "9^9^9"]:
+...     try:
+...         read_answer(text)
+...     except AnswerError as err:
+...         print(str(err)[:94] + ("..." if len(str(err)) > 94 else ""))
 the answer contains '__', which is not allowed in a formula
+the answer calls exec(...): calls of functions other than the maths functions (sqrt, exp, ...
+the parenthesis opened at position 1 is never closed
+the answer contains a power 9**387420489 too large to evaluate (a number beyond 1e300)
+>>> import numpy as np
+>>> read_answer(np.int64(7)), read_answer(np.float64(0.5))
+(7, 0.500000000000000)
 """
 
 from __future__ import annotations
 
+import ast
 import keyword
+import math
+import numbers
 import re
 
-import mpmath
 import sympy as sp
 from sympy.core.function import AppliedUndef
 from sympy.core.relational import Relational
 from sympy.logic.boolalg import Boolean
-from sympy.parsing.sympy_parser import auto_number, auto_symbol, convert_xor, parse_expr
+from sympy.parsing.sympy_parser import auto_number, auto_symbol, convert_xor, stringify_expr
 
-__all__ = ["AnswerError", "read_answer", "plain_symbols", "ALLOWED_FUNCTIONS"]
+from .limits import (MAX_DEPTH, MAX_DERIVATIVE_ORDER, MAX_DIGITS, MAX_EXPONENT,
+                     MAX_FLOAT_DIGITS, MAX_LENGTH, MAX_MAGNITUDE, MAX_NODES, TooExpensive)
 
-MAX_LENGTH = 2000
+__all__ = ["AnswerError", "read_answer", "plain_symbols", "describe", "article",
+           "ALLOWED_FUNCTIONS"]
 
 ALLOWED_FUNCTIONS = {
     "sqrt": sp.sqrt, "cbrt": sp.cbrt, "exp": sp.exp, "log": sp.log, "ln": sp.log,
@@ -46,30 +63,93 @@ ALLOWED_FUNCTIONS = {
     "asin": sp.asin, "acos": sp.acos, "atan": sp.atan, "atan2": sp.atan2,
     "arcsin": sp.asin, "arccos": sp.acos, "arctan": sp.atan,
     "sinh": sp.sinh, "cosh": sp.cosh, "tanh": sp.tanh,
-    "Abs": sp.Abs, "abs": sp.Abs, "sign": sp.sign, "pi": sp.pi,
+    "Abs": sp.Abs, "abs": sp.Abs, "sign": sp.sign,
     "Rational": sp.Rational, "Derivative": sp.Derivative, "diff": sp.diff,
 }
+CONSTANTS = {"pi": sp.pi, "E": sp.E, "I": sp.I}
 
-# what the parser's own transformations refer to, and nothing else
-_GLOBALS = {"__builtins__": {}, "Symbol": sp.Symbol, "Function": sp.Function,
-            "Integer": sp.Integer, "Float": sp.Float, "Rational": sp.Rational,
-            "Add": sp.Add, "Mul": sp.Mul, "Pow": sp.Pow}
-
+# the names the tokenizer's own code refers to, each checked by _Builder
+_GLOBALS = {"Symbol": sp.Symbol, "Function": sp.Function, "Integer": sp.Integer,
+            "Float": sp.Float}
+_LOCALS = {**ALLOWED_FUNCTIONS, **CONSTANTS}
 _TRANSFORMATIONS = (auto_symbol, auto_number, convert_xor)
 
 _GREEK = {"θ": "theta", "φ": "phi", "ϕ": "phi", "α": "alpha", "β": "beta", "μ": "mu",
           "ω": "omega", "ε": "epsilon", "ψ": "psi", "ρ": "rho", "σ": "sigma", "τ": "tau",
           "ν": "nu", "λ": "lambda_", "κ": "kappa", "γ": "gamma", "δ": "delta"}
 
+_SOME_FUNCTIONS = "sqrt, exp, log, sin, cos, tan, ..."
+
 
 class AnswerError(ValueError):
     """The answer cannot be read as a formula; the message says what was expected."""
 
 
-def _check_string(text):
-    if len(text) > MAX_LENGTH:
+def article(word):
+    """'an int64', 'a float': the indefinite article for a word.
+
+    >>> article("int64"), article("float"), article("Ellipsis")
+    ('an int64', 'a float', 'an Ellipsis')
+    """
+    return ("an " if word[:1].lower() in "aeiou" else "a ") + word
+
+
+def describe(value):
+    """A short description of any value, never its memory address.
+
+    >>> describe(object())
+    'an object'
+    >>> describe(3.5)
+    'a float 3.5'
+    """
+    name = type(value).__name__
+    if isinstance(value, (numbers.Number, str)) and not isinstance(value, bool):
+        text = repr(value) if not isinstance(value, int) or value.bit_length() < 200 else \
+            f"of {len(str(abs(value))) if value.bit_length() < 10000 else 'many'} digits"
+        if " at 0x" not in text:
+            return f"{article(name)} {text[:40]}{'...' if len(text) > 40 else ''}"
+    return article(name)
+
+
+# ---------------------------------------------------------------- strings
+def _balance(text):
+    """Unbalanced parentheses, in plain words (positions counted from 1)."""
+    stack = []
+    for i, c in enumerate(text, 1):
+        if c == "(":
+            stack.append(i)
+            if len(stack) > MAX_DEPTH:
+                raise AnswerError(f"the answer is nested more than {MAX_DEPTH} levels deep; "
+                                  "simplify it")
+        elif c == ")":
+            if not stack:
+                raise AnswerError(f"the parenthesis closed at position {i} was never opened")
+            stack.pop()
+    if stack:
+        raise AnswerError(f"the parenthesis opened at position {stack[-1]} is never closed")
+
+
+def _calls(text):
+    """Refuse calls of anything but the maths functions and coordinates such as theta(x)."""
+    for m in re.finditer(r"([^\W\d]\w*)\s*\(", text):
+        name = m.group(1)
+        if name in ALLOWED_FUNCTIONS:
+            continue
+        depth, j = 1, m.end()
+        while j < len(text) and depth:
+            depth += {"(": 1, ")": -1}.get(text[j], 0)
+            j += 1
+        inside = text[m.end():j - 1].strip()
+        if not re.fullmatch(r"[^\W\d]\w*", inside) or name in _GLOBALS or name in CONSTANTS:
+            raise AnswerError(f"the answer calls {name}(...): calls of functions other than the "
+                              f"maths functions ({_SOME_FUNCTIONS}) are not allowed; a "
+                              "coordinate may be written theta(x)")
+
+
+def _check_string(text, max_length):
+    if len(text) > max_length:
         raise AnswerError(f"the answer is {len(text)} characters long; a formula of at most "
-                          f"{MAX_LENGTH} characters is expected")
+                          f"{max_length} characters is expected")
     if not text.strip():
         raise AnswerError("the answer is an empty string; write a formula such as "
                           "'sqrt(2*h - k^2*theta^2)'")
@@ -88,8 +168,11 @@ def _check_string(text):
     bad = sorted({c for c in text if not (c.isalnum() or c == "_" or c.isspace()
                                           or c in "+-*/^().,'")})
     if bad:
-        raise AnswerError(f"the answer contains {' '.join(repr(c) for c in bad)}, which cannot "
-                          "appear in a formula here (use + - * / ^ ** ( ) and names)")
+        shown = " ".join(repr(c) for c in bad[:8])
+        raise AnswerError(f"the answer contains {shown}, which cannot appear in a formula here "
+                          "(use + - * / ^ ** ( ) and names)")
+    _balance(text)
+    _calls(text)
 
 
 def _primes(text):
@@ -98,122 +181,364 @@ def _primes(text):
         return m.group(1) + "prime" * len(m.group(2))
     out = re.sub(r"([^\W\d]\w*)('+)", repl, text)
     if "'" in out:
-        raise AnswerError("a prime ' must follow a name, as in theta' (d theta / dx)")
+        pos = text.index("'", max(0, len(text) - len(out))) + 1 if "'" in text else 0
+        raise AnswerError(f"a prime ' must follow a name, as in theta' (d theta / dx); "
+                          f"the one at position {pos} does not")
     return out
 
 
-def _size_check(expr):
-    """Refuse numbers too large to handle (9**9**9) before SymPy evaluates them."""
-    def value(e):
-        if e.free_symbols:
-            for a in e.args:
-                value(a)
-            return None
-        if isinstance(e, sp.Integer):
-            if abs(int(e)) > 10**30:
-                raise AnswerError("the answer contains a number larger than 1e30")
-            return mpmath.mpf(int(e))
-        if isinstance(e, (sp.Rational, sp.Float)):
-            return mpmath.mpf(float(e))
-        if isinstance(e, (sp.Add, sp.Mul, sp.Pow)):
-            vals = [value(a) for a in e.args]
-            if any(v is None for v in vals):
-                if isinstance(e, sp.Pow) and vals[1] is not None and abs(vals[1]) > 1000:
-                    raise AnswerError("the answer contains a power with an exponent larger "
-                                      "than 1000")
-                return None
-            if isinstance(e, sp.Pow) and abs(vals[1]) > 1000:
-                raise AnswerError("the answer contains a power with an exponent larger than "
-                                  "1000")
-            try:
-                if isinstance(e, sp.Add):
-                    v = mpmath.fsum(vals)
-                elif isinstance(e, sp.Mul):
-                    v = mpmath.fprod(vals)
-                else:
-                    v = mpmath.power(vals[0], vals[1]) if vals[0] else mpmath.mpf(0)
-            except (ZeroDivisionError, ValueError, OverflowError):
-                return None
-            if abs(v) > mpmath.mpf(10) ** 300:
-                raise AnswerError("the answer contains a number larger than 1e300")
-            return v
-        for a in e.args:
-            value(a)
-        return None
-
-    with mpmath.workdps(15):
-        value(expr)
-    for p in expr.atoms(sp.Pow):
-        ex = p.exp
-        if ex.is_Number and abs(float(ex)) > 1000:
-            raise AnswerError("the answer contains a power with an exponent larger than 1000")
+def _syntax(text):
+    """A plain-words reason why text is not a formula (after the checks above)."""
+    m = re.search(r"(?<![\w.])\d+(\.\d*)?\s*(?![eE][+-]?\d)[^\W\d]", text)
+    if m:
+        return (f"a number is followed by a name at position {m.start() + 1} ({m.group(0)!r}): "
+                "write products with *, as in 2*x")
+    m = re.search(r"[+\-*/^]\s*[*/^]", text)
+    if m and m.group(0).replace(" ", "") not in ("**",):
+        return f"two operators in a row at position {m.start() + 1} ({m.group(0)!r})"
+    m = re.search(r"[+\-*/^]\s*$", text)
+    if m:
+        return f"the formula ends with the operator {m.group(0).strip()!r}"
+    m = re.search(r"\(\s*\)", text)
+    if m:
+        return f"empty parentheses at position {m.start() + 1}"
+    m = re.search(r"[\w)]\s+[\w(]", text)
+    if m:
+        return (f"two terms side by side at position {m.start() + 1} ({m.group(0)!r}): "
+                "write products with *")
+    return "write products with *, powers with ** or ^, e.g. '2*m*g*y'"
 
 
-def _rebuild(e):
-    """Evaluate an expression parsed with evaluate=False."""
-    if not e.args or isinstance(e, (sp.Symbol, sp.Number)):
-        return e
-    return e.func(*[_rebuild(a) for a in e.args])
-
-
-def parse_string(text):
-    """Parse a formula string safely; AnswerError says what is wrong with it."""
-    _check_string(text)
+def parse_string(text, max_length=MAX_LENGTH):
+    """Parse a formula string safely, without evaluating it; AnswerError says what is wrong."""
+    _check_string(text, max_length)
     for g, name in _GREEK.items():
         text = text.replace(g, name)
     text = _primes(text)
     try:
-        with mpmath.workdps(15):
-            expr = parse_expr(text, local_dict=dict(ALLOWED_FUNCTIONS), global_dict=dict(_GLOBALS),
-                              transformations=_TRANSFORMATIONS, evaluate=False)
-    except AnswerError:
-        raise
-    except SyntaxError:
-        raise AnswerError(f"could not read {text!r} as a formula (write products with *, "
-                          "powers with ** or ^, e.g. '2*m*g*y')") from None
-    except Exception as exc:  # the parser can raise nearly anything on odd input
-        raise AnswerError(f"could not read {text!r} as a formula ({type(exc).__name__})") \
+        code = stringify_expr(text, dict(_LOCALS), dict(_GLOBALS), _TRANSFORMATIONS)
+        tree = ast.parse(code, mode="eval")
+    except (SyntaxError, ValueError, TypeError, MemoryError, RecursionError, Exception):
+        # not TooExpensive: a BaseException
+        shown = text if len(text) <= 30 else text[:27] + "..."
+        raise AnswerError(f"could not read {shown!r} as a formula: {_syntax(text)}") \
             from None
-    if not isinstance(expr, sp.Basic):
-        raise AnswerError(f"could not read {text!r} as one formula (it reads as a "
-                          f"{type(expr).__name__})")
-    _size_check(expr)
+    return _Builder().build(tree.body)
+
+
+def _too_large(what):
+    return AnswerError(f"the answer contains {what} too large to evaluate (a number beyond "
+                       "1e300)")
+
+
+class _Builder:
+    """Build a SymPy expression from the parsed tree, refusing what is too costly."""
+
+    def __init__(self):
+        self.nodes = 0
+
+    def build(self, node, depth=0):
+        self.nodes += 1
+        if depth > MAX_DEPTH:
+            raise AnswerError(f"the answer is nested more than {MAX_DEPTH} levels deep; "
+                              "simplify it")
+        if self.nodes > MAX_NODES:
+            raise TooExpensive()
+        if isinstance(node, ast.BinOp):
+            return self._binop(node, depth)
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
+            arg = self.build(node.operand, depth + 1)
+            return -arg if isinstance(node.op, ast.USub) else arg
+        if isinstance(node, ast.Name):
+            if node.id in CONSTANTS:
+                return CONSTANTS[node.id]
+            if node.id in ALLOWED_FUNCTIONS:
+                raise AnswerError(f"{node.id} is a function: write {node.id}(...) with its "
+                                  "argument")
+            raise AnswerError(f"the name {node.id} cannot be used here")
+        if isinstance(node, ast.Call):
+            return self._call(node, depth)
+        if isinstance(node, (ast.Tuple, ast.List, ast.Set, ast.Dict)):
+            raise AnswerError(f"the answer is a {type(node).__name__.lower()} of several "
+                              "items; one expression is expected (check one part at a time)")
+        raise AnswerError("the answer is not a formula (only + - * / ** and the maths functions "
+                          "are allowed)")
+
+    def _chain(self, node, depth, ops):
+        """The operands of a left-nested chain a + b - c + ... (or a*b/c...), signed."""
+        items = []
+        while isinstance(node, ast.BinOp) and isinstance(node.op, ops):
+            items.append((node.op, node.right))
+            node = node.left
+            self.nodes += 1
+            if self.nodes > MAX_NODES:
+                raise TooExpensive()
+        items.append((None, node))
+        return [(op, self.build(n, depth + 1)) for op, n in reversed(items)]
+
+    def _binop(self, node, depth):
+        if isinstance(node.op, (ast.Add, ast.Sub)):     # one Add for the whole chain: linear
+            terms = self._chain(node, depth, (ast.Add, ast.Sub))
+            return _bounded_number(sp.Add(*[-t if isinstance(op, ast.Sub) else t
+                                            for op, t in terms]))
+        if isinstance(node.op, (ast.Mult, ast.Div)):
+            factors = self._chain(node, depth, (ast.Mult, ast.Div))
+            if any(isinstance(op, ast.Div) and f == 0 for op, f in factors):
+                raise AnswerError("the answer divides by zero")
+            return _bounded_number(sp.Mul(*[1 / f if isinstance(op, ast.Div) else f
+                                            for op, f in factors]))
+        a = self.build(node.left, depth + 1)
+        b = self.build(node.right, depth + 1)
+        op = node.op
+        if isinstance(op, ast.Add):
+            return a + b
+        if isinstance(op, ast.Sub):
+            return a - b
+        if isinstance(op, ast.Mult):
+            out = a * b
+        elif isinstance(op, ast.Div):
+            if b == 0:
+                raise AnswerError("the answer divides by zero")
+            out = a / b
+        elif isinstance(op, ast.Pow):
+            out = power(a, b)
+        else:
+            raise AnswerError("only + - * / and ** (or ^) are allowed between terms")
+        return _bounded_number(out)
+
+    def _call(self, node, depth):
+        func = node.func
+        if node.keywords:
+            raise AnswerError("keyword arguments (name=value) are not allowed in a formula")
+        if isinstance(func, ast.Call):             # Function('theta')(Symbol('x'))
+            f = self._call(func, depth + 1)
+            args = [self.build(a, depth + 1) for a in node.args]
+            if not isinstance(f, sp.FunctionClass):
+                raise AnswerError("a number or a bracket is followed by '(': write products "
+                                  "with *, as in 2*(x + 1)")
+            if not (len(args) == 1 and args[0].is_Symbol):
+                raise AnswerError("a coordinate function takes one symbol, as in theta(x)")
+            return f(args[0])
+        if not isinstance(func, ast.Name):
+            raise AnswerError("only the maths functions may be called")
+        name = func.id
+        if name in ("Symbol", "Function", "Float", "Integer"):
+            return self._atom(name, node)
+        if name not in ALLOWED_FUNCTIONS:
+            raise AnswerError(f"the answer calls {name}(...): calls of functions other than the "
+                              f"maths functions ({_SOME_FUNCTIONS}) are not allowed")
+        if name in ("Derivative", "diff"):       # Derivative(f, (x, 2)) as SymPy prints it
+            args = [tuple(self.build(b, depth + 2) for b in a.elts)
+                    if isinstance(a, ast.Tuple) and len(a.elts) == 2 else self.build(a, depth + 1)
+                    for a in node.args]
+            return _derivative(name, args)
+        args = [self.build(a, depth + 1) for a in node.args]
+        if name == "Rational":
+            if len(args) != 2 or not all(a.is_Integer for a in args) or args[1] == 0:
+                raise AnswerError("Rational(p, q) takes two integers, q not 0")
+            return sp.Rational(*args)
+        try:
+            return _bounded_number(ALLOWED_FUNCTIONS[name](*args))
+        except TypeError:
+            wanted = "two arguments" if name == "atan2" else "one argument"
+            raise AnswerError(f"{name} takes {wanted}, not {len(args)}") from None
+
+    @staticmethod
+    def _atom(name, node):
+        (arg,) = node.args if len(node.args) == 1 else (None,)
+        value = arg.value if isinstance(arg, ast.Constant) else None
+        if name in ("Symbol", "Function") and isinstance(value, str):
+            return sp.Symbol(value) if name == "Symbol" else sp.Function(value)
+        if name == "Integer" and isinstance(value, int):
+            return integer(value)
+        if name == "Float" and isinstance(value, str):
+            return float_from_text(value)
+        raise AnswerError(f"the answer calls {name}(...): calls of functions other than the "
+                          f"maths functions ({_SOME_FUNCTIONS}) are not allowed")
+
+
+def integer(n):
+    """An int as a SymPy Integer, refusing more than MAX_DIGITS digits."""
+    if abs(n) >= 10**MAX_DIGITS:
+        raise AnswerError(f"the answer contains an integer of more than {MAX_DIGITS} digits")
+    return sp.Integer(n)
+
+
+def float_from_text(text):
+    """A decimal number (as text) as a SymPy Float of at most MAX_FLOAT_DIGITS digits."""
+    mantissa = re.split(r"[eE]", text)[0]
+    digits = len(re.sub(r"\D", "", mantissa).lstrip("0"))
+    if digits > MAX_FLOAT_DIGITS:
+        raise AnswerError(f"the answer contains a number with {digits} digits; at most "
+                          f"{MAX_FLOAT_DIGITS} significant digits are used")
     try:
-        return _rebuild(expr)
-    except Exception as exc:
-        raise AnswerError(f"could not read {text!r} as a formula ({type(exc).__name__}: "
-                          f"{exc})") from None
+        value = float(text)
+    except (ValueError, OverflowError):
+        value = math.inf
+    if not math.isfinite(value) or abs(value) > MAX_MAGNITUDE:
+        raise AnswerError("the answer contains a number larger than 1e300")
+    return sp.Float(text, max(15, digits))
 
 
-def _describe(value):
-    if value is None:
-        return "None"
-    text = repr(value)
-    return f"{type(value).__name__} {text[:40]}{'...' if len(text) > 40 else ''}"
+def power(a, b):
+    """a**b, refusing exponents beyond MAX_EXPONENT and numbers beyond 1e300 before building."""
+    if b.is_Number and abs(b) > MAX_EXPONENT:
+        if a.is_Number and a in (0, 1, -1):
+            return a ** b
+        raise _too_large(f"a power {_short(a)}**{_short(b)}") if a.is_Number else \
+            AnswerError(f"the answer contains a power with the exponent {_short(b)}; "
+                        f"exponents up to {MAX_EXPONENT} are accepted")
+    if a.is_Number and b.is_Number and a != 0:
+        size = float(b) * math.log10(abs(float(a))) if abs(a) < 10**300 else math.inf
+        if size > 300:
+            raise _too_large(f"a power {_short(a)}**{_short(b)}")
+    return a ** b
 
 
-def read_answer(answer):
-    """An answer (expression, number or string) as a SymPy expression in plain symbols.
+def _short(e):
+    text = sp.sstr(e) if sp.count_ops(e) < 20 else "(...)"
+    return text if len(text) <= 20 else text[:17] + "..."
 
-    Raises :class:`AnswerError` with a message saying what was expected.
+
+def _bounded_number(e):
+    if e.is_Number and e.is_finite and e != 0:
+        if e.is_Rational and (abs(e.p).bit_length() > 1000 or e.q.bit_length() > 1000):
+            raise _too_large("a number")
+        if abs(e) > MAX_MAGNITUDE:
+            raise _too_large("a number")
+    return e
+
+
+def _derivative(name, args):
+    """Derivative(f, x[, n]) / diff(f, x, ...), of order at most MAX_DERIVATIVE_ORDER."""
+    if len(args) < 2 or isinstance(args[0], tuple):
+        raise AnswerError(f"{name}(f, x) takes an expression and a variable")
+    f, rest = args[0], args[1:]
+    spec, order = [], 0
+    for a in rest:
+        if isinstance(a, tuple):
+            s, n = a
+            if not (s.is_Symbol and n.is_Integer and n > 0):
+                raise AnswerError(f"{name}(f, (x, n)): x must be a symbol and n a positive "
+                                  "integer")
+            order += int(min(n, 10**6))
+            spec.append([s, int(min(n, 10**6))])
+        elif a.is_Symbol:
+            spec.append([a, 1])
+            order += 1
+        elif a.is_Integer and spec and a > 0:
+            order += int(min(a, 10**6)) - 1
+            spec[-1][1] = int(min(a, 10**6))
+        else:
+            raise AnswerError(f"{name}(f, x, n): the variables must be symbols and n a positive "
+                              "integer")
+        if order > MAX_DERIVATIVE_ORDER:
+            raise AnswerError(f"the answer contains a derivative of order above "
+                              f"{MAX_DERIVATIVE_ORDER}; only first and second derivatives "
+                              "are expected")
+    flat = [tuple(s) for s in spec]
+    if name == "diff" and not f.has(AppliedUndef):
+        return sp.diff(f, *flat)
+    return sp.Derivative(f, *flat)
+
+
+# ---------------------------------------------------------------- objects
+def read_number(answer):
+    """A number of any common kind (int, float, Fraction, Decimal, numpy, mpmath) as SymPy.
+
+    >>> from fractions import Fraction
+    >>> read_number(Fraction(1, 3)), read_number(2**10)
+    (1/3, 1024)
     """
+    kind = type(answer).__module__.split(".")[0]
+    if kind == "numpy" and hasattr(answer, "item") and getattr(answer, "ndim", 0) == 0:
+        answer = answer.item()
+    elif kind == "mpmath":
+        import mpmath
+        if isinstance(answer, mpmath.mpc):
+            answer = complex(answer)
+        else:
+            answer = mpmath.nstr(answer, MAX_FLOAT_DIGITS) if mpmath.isfinite(answer) else \
+                float(answer)
+            return number_from_text_or_float(answer)
     if isinstance(answer, bool):
         raise AnswerError(f"the answer is {answer}, a truth value; a formula is expected")
+    if isinstance(answer, numbers.Integral):
+        return integer(int(answer))
+    if isinstance(answer, numbers.Rational):
+        return sp.Rational(integer(int(answer.numerator)), integer(int(answer.denominator)))
+    if isinstance(answer, numbers.Real):
+        return number_from_text_or_float(answer)
+    if isinstance(answer, numbers.Complex):
+        z = complex(answer)
+        return number_from_text_or_float(z.real) + sp.I * number_from_text_or_float(z.imag)
+    if isinstance(answer, numbers.Number):          # decimal.Decimal
+        return number_from_text_or_float(str(answer))
+    return None
+
+
+def number_from_text_or_float(x):
+    """A float, Decimal or numeral text as a SymPy Float (finite, at most 1e300)."""
+    try:
+        value = float(x)
+    except (OverflowError, ValueError):
+        value = math.inf
+    if math.isnan(value):
+        raise AnswerError("the answer is not a number (nan)")
+    if not math.isfinite(value):
+        raise AnswerError("the answer is infinite; a finite number is expected")
+    text = str(x)
+    return float_from_text(text) if re.fullmatch(r"[+-]?[\d.]+([eE][+-]?\d+)?", text) else \
+        sp.Float(value)
+
+
+def _bounded_tree(expr):
+    """Refuse a SymPy object too costly to handle, before anything is evaluated."""
+    count = 0
+    stack = [(expr, 0)]
+    while stack:
+        e, depth = stack.pop()
+        count += 1
+        if count > MAX_NODES or depth > 4 * MAX_DEPTH:
+            raise TooExpensive()
+        if isinstance(e, sp.Integer) and e.p.bit_length() > 1000:
+            raise _too_large("a number")
+        if isinstance(e, sp.Rational) and (e.p.bit_length() > 1000 or e.q.bit_length() > 1000):
+            raise _too_large("a number")
+        if isinstance(e, sp.Float):
+            if e._prec > 4 * MAX_FLOAT_DIGITS:
+                raise AnswerError(f"the answer contains a Float with about {int(e._prec * 0.30103)}"
+                                  f" digits; at most {MAX_FLOAT_DIGITS} digits are used")
+            if e.is_finite and e != 0 and not abs(e._mpf_[2] + e._mpf_[3]) < 1000:
+                raise _too_large("a number")
+        if isinstance(e, sp.Derivative):
+            if sum(int(min(c, 10**6)) if c.is_Integer else 10**6
+                   for _, c in e.variable_count) > MAX_DERIVATIVE_ORDER:
+                raise AnswerError(f"the answer contains a derivative of order above "
+                                  f"{MAX_DERIVATIVE_ORDER}; only first and second derivatives "
+                                  "are expected")
+        if isinstance(e, sp.Pow) and e.exp.is_Number and abs(e.exp) > MAX_EXPONENT \
+                and not e.base.is_Number:
+            raise AnswerError(f"the answer contains a power with an exponent beyond "
+                              f"{MAX_EXPONENT}")
+        stack.extend((a, depth + 1) for a in e.args)
+
+
+def read_answer(answer, max_length=MAX_LENGTH):
+    """An answer (expression, number or string) as a SymPy expression in plain symbols.
+
+    Raises :class:`AnswerError` with a message saying what was expected, or
+    :class:`~whittaker_teach.exercises.limits.TooExpensive`.
+    """
     if isinstance(answer, str):
-        expr = parse_string(answer)
-    elif isinstance(answer, (int, float)) and not isinstance(answer, bool):
-        expr = sp.sympify(answer)
+        expr = parse_string(answer, max_length)
     elif isinstance(answer, sp.Basic):
+        _bounded_tree(answer)
         expr = answer
-    elif isinstance(answer, (list, tuple, set, frozenset)):
-        raise AnswerError(f"the answer is a {type(answer).__name__} of {len(answer)} items; "
-                          "one expression is expected (check one part at a time)")
-    elif isinstance(answer, dict):
-        raise AnswerError("the answer is a dict; one expression is expected (for a dict such "
-                          "as red.accelerations(), take its value: list(d.values())[0])")
     else:
-        raise AnswerError(f"the answer is a {_describe(answer)}; a SymPy expression or a "
-                          "string such as 'sqrt(2*h)' is expected")
+        expr = read_number(answer)
+        if expr is None:
+            _refuse_object(answer)
     if isinstance(expr, sp.Equality):
         raise AnswerError("the answer is an equation (Eq); give only the expression: for "
                           "Eq(lhs, rhs), the right-hand side rhs (or lhs - rhs where the "
@@ -223,13 +548,26 @@ def read_answer(answer):
         raise AnswerError(f"the answer is a relation or truth value ({type(expr).__name__}); "
                           "a formula is expected")
     if isinstance(expr, sp.MatrixBase) or not isinstance(expr, sp.Expr):
-        raise AnswerError(f"the answer is a {type(expr).__name__}; one expression is expected")
+        raise AnswerError(f"the answer is {article(type(expr).__name__)}; one expression is "
+                          "expected")
     if expr.has(sp.zoo, sp.oo, -sp.oo, sp.nan):
         raise AnswerError("the answer contains infinity or an undefined value (a division "
                           "by zero?)")
-    if any(abs(n) > 10**300 for n in expr.atoms(sp.Number)):
-        raise AnswerError("the answer contains a number larger than 1e300")
     return plain_symbols(expr)
+
+
+def _refuse_object(answer):
+    if isinstance(answer, (list, tuple, set, frozenset)):
+        raise AnswerError(f"the answer is {article(type(answer).__name__)} of {len(answer)} "
+                          "items; one expression is expected (check one part at a time)")
+    if isinstance(answer, dict):
+        raise AnswerError("the answer is a dict; one expression is expected (for a dict such "
+                          "as red.accelerations(), take its value: list(d.values())[0])")
+    if type(answer).__module__.split(".")[0] == "numpy" and hasattr(answer, "shape"):
+        raise AnswerError(f"the answer is a numpy array of shape {tuple(answer.shape)}; one "
+                          "number is expected (take one element)")
+    raise AnswerError(f"the answer is {describe(answer)}; a SymPy expression, a number or a "
+                      "string such as 'sqrt(2*h)' is expected")
 
 
 def plain_symbols(expr):
@@ -239,20 +577,22 @@ def plain_symbols(expr):
             expr = expr.replace(
                 lambda e: isinstance(e, sp.Derivative) and not isinstance(e.expr, AppliedUndef),
                 lambda e: e.doit())
+        except TooExpensive:
+            raise
         except Exception:  # noqa: BLE001 - an odd derivative is reported below
             pass
     subs = {}
     for d in sorted(expr.atoms(sp.Derivative), key=sp.default_sort_key):
         f = d.expr
         if not (isinstance(f, AppliedUndef) and len(f.args) == 1 and f.args[0].is_Symbol):
-            raise AnswerError(f"the answer contains the derivative {d}, which is not the "
-                              "derivative of a coordinate such as Derivative(theta(x), x): "
+            raise AnswerError(f"the answer contains the derivative {_short(d)}, which is not "
+                              "the derivative of a coordinate such as Derivative(theta(x), x): "
                               "evaluate it first (.doit())")
         var = f.args[0]
-        n = sum(c for v, c in d.variable_count if v == var)
+        n = sum(int(c) for v, c in d.variable_count if v == var)
         if any(v != var for v, _ in d.variable_count) or n > 2:
-            raise AnswerError(f"the answer contains {d}: only first and second derivatives "
-                              "of a coordinate are expected")
+            raise AnswerError(f"the answer contains {_short(d)}: only first and second "
+                              "derivatives of a coordinate are expected")
         name = f.func.__name__
         if var.name == "t":
             suffix = "dot" if n == 1 else "ddot"
@@ -265,7 +605,7 @@ def plain_symbols(expr):
         if len(f.args) == 1 and f.args[0].is_Symbol:
             subs[f] = sp.Symbol(f.func.__name__)
         else:
-            raise AnswerError(f"the answer contains {f}, an unknown function: use the names "
-                              "of the exercise, such as theta or theta(x)")
+            raise AnswerError(f"the answer contains {_short(f)}, an unknown function: use the "
+                              "names of the exercise, such as theta or theta(x)")
     expr = expr.xreplace(subs) if subs else expr
     return expr

@@ -13,15 +13,16 @@ options (``choices``).
 
 from __future__ import annotations
 
-import random
+import math
 import zlib
 from dataclasses import dataclass, field
 
 import sympy as sp
 
-from .compare import _Fn, compare, depends_on
+from .compare import _Fn, compare, depends_on, equal
 from .feedback import Feedback
-from .parsing import _GREEK, AnswerError, plain_symbols, read_answer
+from .limits import MAX_LENGTH, TOO_EXPENSIVE, TooExpensive, time_budget
+from .parsing import _GREEK, AnswerError, article, plain_symbols, read_answer
 
 __all__ = ["Exercise", "Part", "Names", "check_part"]
 
@@ -55,14 +56,14 @@ class Names:
     def __getitem__(self, name):
         return self.symbols[name]
 
-    def resolve(self, expr, listing):
+    def resolve(self, expr):
         """Map every free symbol of expr (by name) to the exercise's symbol."""
         sub = {}
-        for s in expr.free_symbols:
+        for s in sorted(expr.free_symbols, key=str):
             canon = self.alias.get(s.name)
             if canon is None:
-                raise AnswerError(f"your answer uses the symbol {s.name}, which is not a symbol "
-                                  f"of this exercise; {listing}")
+                raise AnswerError(f"your answer uses the symbol {s.name[:30]}, which is not a "
+                                  "symbol of this exercise")
             if canon is not s:
                 sub[s] = canon
         return expr.xreplace(sub) if sub else expr
@@ -128,10 +129,6 @@ class Exercise:
         return self.build()[2]
 
 
-def _article(word):
-    return ("an " if word[:1].lower() in "aeiou" else "a ") + word
-
-
 def _sentence(text):
     return text[:1].upper() + text[1:]
 
@@ -142,7 +139,7 @@ def _norm_choice(text):
 
 def _check_choice(ex, part, answer):
     if not isinstance(answer, str):
-        return Feedback(False, f"The answer is {_article(type(answer).__name__)}; "
+        return Feedback(False, f"The answer is {article(type(answer).__name__)}; "
                         f"{part.listing()} (a string)", ex.id, part.name, "invalid")
     key = _norm_choice(answer)
     for name, (aliases, message) in part.choices.items():
@@ -154,8 +151,11 @@ def _check_choice(ex, part, answer):
                     "(a string)", ex.id, part.name, "invalid")
 
 
-def check_part(ex, part, answer):
-    """Check one answer against one part: a :class:`Feedback`."""
+def check_part(ex, part, answer, max_length=None):
+    """Check one answer against one part: a :class:`Feedback`.
+
+    ``max_length``: of a string answer (default: the limit for typed answers).
+    """
     names, domain, _ = ex.build()
     if answer is None or answer is Ellipsis:
         what = part.listing() if part.is_choice else f"expected {part.what}"
@@ -164,7 +164,16 @@ def check_part(ex, part, answer):
     if part.is_choice:
         return _check_choice(ex, part, answer)
     try:
-        expr = names.resolve(read_answer(answer), part.listing())
+        with time_budget():
+            return _check_expression(ex, part, answer, names, domain, max_length)
+    except TooExpensive as exc:
+        return Feedback(False, _sentence(str(exc) or TOO_EXPENSIVE) + ".", ex.id, part.name,
+                        "invalid")
+
+
+def _check_expression(ex, part, answer, names, domain, max_length=None):
+    try:
+        expr = names.resolve(read_answer(answer, max_length or MAX_LENGTH))
     except AnswerError as exc:
         return Feedback(False, _sentence(f"{exc}; {part.listing()}"), ex.id, part.name,
                         "invalid")
@@ -176,7 +185,7 @@ def check_part(ex, part, answer):
     seed = zlib.crc32(f"{ex.id}:{part.name}".encode())
     extra = sorted((s for s in expr.free_symbols if s not in part.variables), key=str)
     if extra:
-        pts = domain.sample(random.Random(seed), 4)
+        pts = domain.points(seed, 4)
         fn = _Fn(expr, domain.symbols)
         bad = [s for s in extra if depends_on(fn, s, pts[0], pts, domain)]
         if bad:
@@ -191,19 +200,55 @@ def check_part(ex, part, answer):
     if verdict.ok:
         return Feedback(True, part.success or f"{part.what} is right.", ex.id, part.name)
     for wrong, message in part.wrong:
-        if compare(expr, wrong, domain, seed).ok:
+        if equal(expr, wrong, domain, seed):
             return Feedback(False, message, ex.id, part.name)
+    other = _other_part(ex, part, expr, domain, seed,
+                        terms=verdict.hint.startswith("your answer is not equal"))
+    if other:
+        return Feedback(False, other, ex.id, part.name)
     return Feedback(False, _sentence(verdict.hint) + ".", ex.id, part.name)
+
+
+def _other_part(ex, part, expr, domain, seed, terms=True):
+    """Is the answer another part's answer, or (terms) does it carry a term of another part's?"""
+    try:
+        for name, other in ex.parts.items():
+            if name == part.name or other.is_choice or not other.expected.free_symbols:
+                continue
+            if equal(expr, other.expected, domain, seed):
+                return (f"That is the answer to part {name!r} ({other.what}), not to this "
+                        f"one: {part.what}.")
+        if not terms:
+            return ""
+        diff = expr - part.expected
+        for name, other in ex.parts.items():
+            if name == part.name or other.is_choice or not other.expected.free_symbols:
+                continue
+            terms = sp.Add.make_args(other.expected)
+            if len(terms) < 2 or len(terms) > 8:
+                continue
+            for t in terms:
+                for sign, what in ((1, "an extra term"), (-1, "a term missing")):
+                    if equal(diff, sign * t, domain, seed):
+                        return (f"Your answer has {what}, one of the terms of part {name!r} "
+                                f"({other.what}): that term does not belong to "
+                                f"{part.what}." if sign == 1 else
+                                f"Your answer lacks a term (one that also appears in part "
+                                f"{name!r}, {other.what}).")
+    except (RuntimeError, TooExpensive):
+        return ""
+    return ""
 
 
 def _check_number(ex, part, expr):
     """A number against a number: equal within part.rtol (default 1e-10), or by how much not."""
-    try:
-        got = complex(sp.N(expr, 30))
-        want = complex(sp.N(part.expected, 30))
-    except (TypeError, ValueError):
-        return Feedback(False, f"Cannot evaluate {sp.sstr(expr)[:40]} as a number; "
+    fn = _Fn(expr, [])
+    got, want = fn({}), _Fn(part.expected, [])({})
+    if got is None:
+        why = " (it is beyond 1e300)" if fn.huge else ""
+        return Feedback(False, f"Cannot evaluate your answer as a number{why}; "
                         f"{part.listing()}", ex.id, part.name, "invalid")
+    got, want = complex(got), complex(want)
     rtol = 1e-10 if part.rtol is None else part.rtol
     if abs(got - want) <= rtol * max(1.0, abs(want)):
         return Feedback(True, part.success or f"{part.what} is right.", ex.id, part.name)
@@ -212,12 +257,29 @@ def _check_number(ex, part, expr):
                         ex.id, part.name)
     if want.real and abs(got.real + want.real) <= rtol * abs(want.real):
         return Feedback(False, "The sign is wrong.", ex.id, part.name)
-    rel = (got.real - want.real) / want.real if want.real else float("inf")
-    side = "too large" if rel > 0 else "too small"
-    return Feedback(False, f"Your number is {side} by {abs(rel):.2%} of the right value "
-                    f"(the tolerance is {rtol:g}, relative).", ex.id, part.name)
+    side = "too large" if got.real > want.real else "too small"
+    if not want.real:
+        return Feedback(False, f"Your number is {side}: the right value is 0.", ex.id,
+                        part.name)
+    tolerance = f"(the tolerance is {rtol:g}, relative)"
+    if abs(got.real - want.real) >= 100 * abs(want.real):
+        return Feedback(False, f"Your number is {side}: {abs(got.real / want.real):.3g} times "
+                        f"the right value {tolerance}.", ex.id, part.name)
+    return Feedback(False, f"Your number is {side} by {_percent(got.real, want.real)} of the "
+                    f"right value {tolerance}.", ex.id, part.name)
+
+
+def _percent(got, want):
+    """|got - want|/|want| as a percentage with two significant digits (never 0.00%).
+
+    >>> _percent(1.0000001, 1.0), _percent(1.5, 1.0), _percent(1.0123, 1.0)
+    ('0.000010%', '50%', '1.2%')
+    """
+    rel = abs(got - want) / abs(want) * 100
+    text = f"{rel:.{max(0, 1 - math.floor(math.log10(rel)))}f}"
+    return text + "%"
 
 
 def plain(expr, names):
     """A library expression in the exercise's symbols (theta(x) -> theta, ...)."""
-    return names.resolve(plain_symbols(sp.sympify(expr)), "")
+    return names.resolve(plain_symbols(sp.sympify(expr)))

@@ -1,0 +1,198 @@
+"""`python -m whittaker_teach grade`: a generated class of 31 submissions graded into the CSV.
+
+All right, all wrong, partly answered, unanswered, answers as strings and as
+SymPy objects, a cell that raises, an infinite loop, a 10 GB allocation, a
+notebook that writes and deletes outside its folder, one that prints 30 MB,
+one that opens a network connection, one that forges its own check log, a
+file that is not a notebook and a truncated JSON file.  The batch must finish,
+with the expected row for every part of every submission.
+"""
+import csv
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import nbformat
+import pytest
+
+import whittaker_teach
+from whittaker_teach.exercises import grade as grading
+
+EX = "kepler-orbit"
+RIGHT = {"L_star": '"sqrt(2*h + 2*m*mu/r)*sqrt(m*(r^2 + r\'^2))"',
+         "r_pp": '"(r^2*(2*h*r + m*mu) + r\'^2*(4*h*r + 3*m*mu))/(2*r*(h*r + m*mu))"',
+         "h": '"-m*mu*(1 - e^2)/(2*p)"'}
+WRONG = {"L_star": '"-sqrt(2*h + 2*m*mu/r)*sqrt(m*(r^2 + r\'^2))"',
+         "r_pp": '"(r^2*(2*h*r + m*mu) + r\'^2*(4*h*r + 3*m*mu))/(2*(h*r + m*mu))"',
+         "h": '"-m*mu*Abs(1 - e^2)/(2*p)"'}
+SYMPY_RIGHT = {
+    "L_star": "sp.sqrt(2*h + 2*m*mu/r)*sp.sqrt(m*(r**2 + rp**2))",
+    "r_pp": "(r**2*(2*h*r + m*mu) + rp**2*(4*h*r + 3*m*mu))/(2*r*(h*r + m*mu))",
+    "h": "m*mu*(e**2 - 1)/(2*p)"}
+PARTS = list(RIGHT)
+SYMBOLS = ("import sympy as sp\nm, mu, p, r = sp.symbols('m mu p r', positive=True)\n"
+           "h, e, rp = sp.symbols('h e rprime')")
+
+
+def _notebook(path, cells, exercise=EX):
+    nb = nbformat.v4.new_notebook()
+    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3",
+                                 "language": "python"}
+    if exercise:
+        nb.metadata["whittaker_teach"] = {"exercise": exercise}
+    nb.cells = [nbformat.v4.new_markdown_cell("# a submission")]
+    nb.cells += [nbformat.v4.new_code_cell(c) for c in cells]
+    nbformat.write(nb, path)
+
+
+def _checks(answers):
+    return [f"check({EX!r}, {answers[p]}, part={p!r})" for p in PARTS]
+
+
+def _class(folder, outside):
+    """{file name: (expected {part: ok}, words of the failure row or None)}."""
+    start = "from whittaker_teach.exercises import check"
+    none = dict.fromkeys(PARTS, "None")
+    expected = {}
+
+    def add(name, cells, oks, failure=None, exercise=EX):
+        _notebook(folder / name, cells, exercise)
+        expected[name] = (oks, failure)
+
+    for i in range(4):
+        add(f"right{i}.ipynb", [start, *_checks(RIGHT)], dict.fromkeys(PARTS, True))
+    for i in range(2):
+        add(f"right-sympy{i}.ipynb", [start, SYMBOLS, *_checks(SYMPY_RIGHT)],
+            dict.fromkeys(PARTS, True))
+    for i in range(6):
+        add(f"wrong{i}.ipynb", [start, *_checks(WRONG)], dict.fromkeys(PARTS, False))
+    for i in range(3):
+        add(f"partly-a{i}.ipynb", [start, *_checks({**none, "L_star": RIGHT["L_star"]})],
+            {"L_star": True, "r_pp": False, "h": False})
+        add(f"partly-b{i}.ipynb",
+            [start, *_checks({**none, "h": RIGHT["h"], "r_pp": WRONG["r_pp"]})],
+            {"L_star": False, "r_pp": False, "h": True})
+    for i in range(4):
+        add(f"blank{i}.ipynb", [start, *_checks(none)], dict.fromkeys(PARTS, False))
+    checks = _checks(RIGHT)
+    add("raises.ipynb", [start, checks[0], "1/0", *checks[1:]], dict.fromkeys(PARTS, True),
+        "error in code cell 3: ZeroDivisionError")
+    add("loops.ipynb", [start, checks[0], "while True:\n    pass", *checks[1:]],
+        {"L_star": True, "r_pp": False, "h": False}, "timeout: code cell 3")
+    add("memory.ipynb", [start, checks[0], "x = bytearray(10 * 1024**3)", *checks[1:]],
+        dict.fromkeys(PARTS, True), "MemoryError")
+    add("vandal.ipynb", [start, *checks,
+                         f"import os, shutil\nos.remove({str(outside / 'keep.txt')!r})",
+                         f"open({str(outside / 'new.txt')!r}, 'w').write('x')",
+                         "shutil.rmtree(os.path.expanduser('~'), ignore_errors=True)"],
+        dict.fromkeys(PARTS, True), "error in code cell" if grading.confinement_available()
+        else None)
+    add("noisy.ipynb", [start, "print('x' * 30_000_000)", *checks],
+        dict.fromkeys(PARTS, True))
+    add("network.ipynb", [start, *checks, "import socket\n"
+                          "socket.create_connection(('93.184.216.34', 80), timeout=3)"],
+        dict.fromkeys(PARTS, True), "error in code cell")
+    forged = json.dumps({"exercise": EX, "part": "h", "status": "correct", "ok": True,
+                         "answer": "m*mu", "why": ""})
+    add("forged.ipynb", [start, *_checks(none),
+                         f"import os\nopen(os.environ['WHITTAKER_TEACH_CHECK_LOG'], 'a')"
+                         f".write({forged!r} + '\\n')"],
+        {"L_star": False, "r_pp": False, "h": False})
+    (folder / "essay.ipynb").write_text("My answers are on paper.\n", encoding="utf-8")
+    expected["essay.ipynb"] = (None, "not a notebook")
+    text = (folder / "right0.ipynb").read_text(encoding="utf-8")
+    (folder / "cut.ipynb").write_text(text[: len(text) // 2], encoding="utf-8")
+    expected["cut.ipynb"] = (None, "truncated")
+    return expected
+
+
+@pytest.fixture
+def package_path(monkeypatch):
+    """Kernels import this copy of whittaker_teach (not the editable install's)."""
+    root = str(Path(whittaker_teach.__file__).resolve().parents[1])
+    old = os.environ.get("PYTHONPATH", "")
+    monkeypatch.setenv("PYTHONPATH", os.pathsep.join([root] + ([old] if old else [])))
+    return root
+
+
+def test_a_class_is_graded_into_the_expected_csv(tmp_path, package_path):
+    folder = tmp_path / "submissions"
+    folder.mkdir()
+    outside = tmp_path / "lecturer"
+    outside.mkdir()
+    (outside / "keep.txt").write_text("keep me", encoding="utf-8")
+    expected = _class(folder, outside)
+    assert len(expected) >= 30
+    paths = sorted(str(p) for p in folder.iterdir())
+    out = tmp_path / "grades.csv"
+    rows, line = grading.grade(paths, str(out), feedback=str(tmp_path / "feedback"), jobs=2,
+                               cell_timeout=10, timeout=100, quiet=True)
+    with open(out, newline="", encoding="utf-8") as f:
+        table = list(csv.reader(f))
+    assert table[0] == ["submission", "exercise", "part", "ok", "message"]
+    got = {}
+    for sub, ex, part, ok, message in table[1:]:
+        got.setdefault(sub, []).append((ex, part, ok, message))
+    assert sorted(got) == sorted(expected)
+    for sub, (oks, failure) in expected.items():
+        lines = got[sub]
+        fails = [m for _, part, _, m in lines if part == ""]
+        if oks is None:                                     # could not be read at all
+            assert len(lines) == 1 and lines[0][2] == "False" and failure in lines[0][3], lines
+            continue
+        parts = {part: (ok == "True", m) for _, part, ok, m in lines if part}
+        assert {p: v[0] for p, v in parts.items()} == oks, (sub, lines)
+        for p, (ok, message) in parts.items():
+            if not ok and "blank" in sub:
+                assert message == "not answered"
+        if failure is None:
+            assert not fails, (sub, fails)
+        else:
+            assert len(fails) == 1 and failure in fails[0], (sub, fails)
+    # the lecturer's files are intact (the kernel could only write its scratch folder)
+    if grading.confinement_available():
+        assert (outside / "keep.txt").read_text(encoding="utf-8") == "keep me"
+        assert not (outside / "new.txt").exists()
+    right = sum(1 for r in rows if r.part and r.ok)
+    wrong = sum(1 for r in rows if r.part and not r.ok)
+    assert line == f"{len(expected)} submissions: {right} parts right, {wrong} parts wrong, " \
+        f"{sum(1 for _, f in expected.values() if f)} failures"
+    pages = sorted(p.name for p in (tmp_path / "feedback").iterdir())
+    assert len(pages) == len(expected) and "right0.ipynb.html" in pages
+    page = (tmp_path / "feedback" / "wrong0.ipynb.html").read_text(encoding="utf-8")
+    assert "not yet right" in page and "<table>" in page
+
+
+def test_the_command_line(tmp_path, package_path):
+    (tmp_path / "a.ipynb").write_text("{\"cells\": [", encoding="utf-8")
+    (tmp_path / "b.txt").write_text("hello", encoding="utf-8")
+    out = tmp_path / "g.csv"
+    proc = subprocess.run([sys.executable, "-m", "whittaker_teach", "grade",
+                           str(tmp_path / "a.ipynb"), str(tmp_path / "b.txt"), "--out", str(out)],
+                          capture_output=True, text=True, timeout=120,
+                          env={**os.environ, "PYTHONPATH": package_path})
+    assert proc.returncode == 0, proc.stderr
+    assert "2 submissions: 0 parts right, 0 parts wrong, 2 failures" in proc.stdout
+    rows = list(csv.reader(open(out, encoding="utf-8")))
+    assert rows[1][:4] == ["a.ipynb", "", "", "False"] and "truncated" in rows[1][4]
+    assert rows[2][:4] == ["b.txt", "", "", "False"] and "not a notebook" in rows[2][4]
+
+
+def test_recorded_answers_are_graded_as_they_were_checked():
+    """Every correct form of the unit tests (strings, SymPy objects from the library,
+    numbers of every kind) survives recording: the grader's re-check agrees."""
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "unit"))
+    import test_exercise_checks as cases
+
+    from whittaker_teach.exercises import check
+    from whittaker_teach.exercises.feedback import Feedback
+    for (ex, part), (good, bad) in sorted(cases.CASES.items()):
+        for spec in good + cases.MORE_GOOD.get((ex, part), []) + [b for b, _ in bad]:
+            answer = cases._answer(spec)
+            want = check(ex, answer, part=part).ok
+            rec = json.loads(grading.record_line(Feedback(False, "", ex, part, "invalid"),
+                                                 answer))
+            ok, message = grading._recheck(ex, part, rec)
+            assert ok == want, (ex, part, spec, message)
