@@ -3,7 +3,8 @@
 Writes into ``book/figures/numerics/`` (or ``--out DIR``):
 
 =============================  ===============================================
-``work_precision.json/.svg``   the full work-precision study (``bench numerics``)
+``work_precision.json/.csv``   the full work-precision study (``bench numerics``)
+``work_precision.svg``         its figure
 ``long_run.json/.svg``         hard case 6: 10^4 periods of the sledge, 10^3 of the sleigh
 ``stiff.json``                 hard case 5: k^2/J = 1e4 and 1e6, every method
 ``hard_cases.json``            the outcome of every hard case at full size
@@ -70,6 +71,9 @@ def _work_precision(out):
     from . import work_precision as wp
     res = wp.study(quick=False, progress=True)
     _dump(res, os.path.join(out, "work_precision.json"))
+    with open(os.path.join(out, "work_precision.csv"), "w") as f:
+        f.write(wp.to_csv(res))
+    print(f"wrote {os.path.join(out, 'work_precision.csv')}", flush=True)
     print(wp.table(res))
     print(wp.summary(res))
     _svg(wp.plot(res), os.path.join(out, "work_precision.svg"))
