@@ -29,7 +29,7 @@ NOTEBOOK_DIRS := book exercises
 
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 
-.PHONY: help setup mathjax book site derive test unit doctest nbval browser notebooks exercises bench clean
+.PHONY: help setup mathjax book site derive test unit slow doctest nbval browser notebooks exercises bench clean
 
 help:
 	@sed -n '3,12p' Makefile | sed 's/^# \{0,1\}//'
@@ -71,9 +71,14 @@ unit: setup
 	  else echo "unit: no tests in $$d yet, skipped"; fi; \
 	done; \
 	if [ -n "$$dirs" ]; then \
-	  echo "PYTHONHASHSEED=0 $(PYTHON) -m pytest$$dirs -q $(PYTEST_ARGS)"; \
-	  PYTHONHASHSEED=0 $(PYTHON) -m pytest $$dirs -q $(PYTEST_ARGS); \
+	  echo "PYTHONHASHSEED=0 $(PYTHON) -m pytest$$dirs -q -m 'not slow' $(PYTEST_ARGS)"; \
+	  PYTHONHASHSEED=0 $(PYTHON) -m pytest $$dirs -q -m "not slow" $(PYTEST_ARGS); \
 	fi
+
+# The tests marked slow (minutes each: a 1e5-period run under tracemalloc, the quick
+# study run twice); not part of `make test`.
+slow: setup
+	PYTHONHASHSEED=0 $(PYTHON) -m pytest tests/unit tests/integration -q -m slow $(PYTEST_ARGS)
 
 doctest: setup
 	@if [ -d whittaker_teach ] && grep -rqs --include='*.py' '>>>' whittaker_teach; then \

@@ -40,12 +40,12 @@ def test_run_set_and_picks_do_not_depend_on_speed(tiny):
 
 
 def test_budget_in_evaluations(monkeypatch):
-    monkeypatch.setattr(wp, "NFEV_BUDGET", 300)
+    monkeypatch.setattr(wp, "NFEV_BUDGET", 250)
     res = wp.study(quick=True, progress=False, amplitudes=(0.3,), methods=("DOP853",),
                    rtols=(1e-3, 1e-6, 1e-9), dla_steps=(), periods=1, repeat=1,
                    alternatives=False)
     full = [r for r in res["runs"] if r["model"] == "full"]
-    assert full[-1]["nfev"] > 300 and all(r["nfev"] <= 300 for r in full[:-1])
+    assert full[-1]["nfev"] > 250 and all(r["nfev"] <= 250 for r in full[:-1])
     assert len(full) < 3
 
 

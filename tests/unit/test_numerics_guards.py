@@ -104,18 +104,31 @@ def test_t_eval_checked(S):
                    t_eval=[0.5, 2.0])
 
 
-@pytest.mark.slow
-def test_long_run_memory(S):
-    """1e5 periods of the full model with 1000 output points: under 200 MB."""
+def _peak(S, periods, method="RK23", rtol=1e-2):
     import tracemalloc
     ex = wt.examples.sledge_exact(P, a=0.5, phi=0.3, C=1.0)
-    T = 1e5 * ex.period
+    T = periods * ex.period
     t_eval = np.linspace(0, T, 1000)
+    S.simulate(*ex.initial(), (0, 1.0), P, method=method, rtol=rtol)      # compiled
     tracemalloc.start()
-    tr = S.simulate(*ex.initial(), (0, T), P, rtol=1e-3, t_eval=t_eval)
+    tr = S.simulate(*ex.initial(), (0, T), P, method=method, rtol=rtol, t_eval=t_eval)
     _, peak = tracemalloc.get_traced_memory()
     tracemalloc.stop()
-    assert len(tr.t) == 1000 and peak < 200e6, peak
+    assert len(tr.t) == 1000 and tr.nfev > 5 * periods
+    return peak
+
+
+def test_memory_does_not_grow_with_the_run(S):
+    """With t_eval, a run keeps its output only: 10 times longer, the same peak memory."""
+    short, long = _peak(S, 200), _peak(S, 2000)
+    assert long < 1.2 * short + 1e6 and long < 20e6, (short, long)
+
+
+@pytest.mark.slow
+def test_long_run_memory(S):
+    """1e5 periods of the full model with 1000 output points: under 200 MB (several
+    minutes under tracemalloc: ``make slow``)."""
+    assert _peak(S, 100_000, "DOP853", 1e-3) < 200e6
 
 
 def test_scene_picks_exact_for_the_sledge(S):

@@ -7,8 +7,8 @@ The sledge (m = J = k = C = 1, so omega = 1) at two amplitudes, a small one
 and one near pi/2, over 20 periods from theta = a cos(phi), phi = 0.3.
 
 **The run set is fixed.**  Every (model, method) runs down a ladder of
-tolerances ``rtol`` = 1e-3, 1e-4, ..., 1e-13 and 2.3e-14 (the smallest the
-package accepts), with ``atol`` = :data:`ATOL` (tiny: the error control is
+tolerances ``rtol`` = 1e-3, 1e-5, 1e-7, 1e-9, 1e-10, ..., 1e-13 and 2.3e-14
+(the smallest the package accepts), with ``atol`` = :data:`ATOL` (tiny: the error control is
 relative in every component).  A (model, method) stops going tighter after a
 run that needed more than :data:`NFEV_BUDGET` right-hand-side evaluations: a
 budget in evaluations, the same on every machine, never in seconds.
@@ -66,9 +66,10 @@ __all__ = ["study", "cheapest", "floors", "table", "summary", "summary_rows", "p
 
 AMPLITUDES = (0.3, 1.5)
 METHODS = ("RK45", "DOP853", "Radau", "LSODA")
-#: the hand-written yardstick and the alternative formulation run these only
+#: the hand-written yardstick and the alternative formulation run these only (the
+#: cheapest methods of the full model)
 SHORT_METHODS = ("DOP853", "LSODA")
-RTOLS = tuple(10.0 ** -k for k in range(3, 14)) + (2.3e-14,)
+RTOLS = (1e-3, 1e-5, 1e-7, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 2.3e-14)
 #: atol for every run: tiny, so that the error control is relative in every component
 ATOL = 1e-20
 DLA_STEPS = (16, 32, 64, 128, 256, 512)
@@ -236,7 +237,7 @@ def _ladder(amplitudes, methods, rtols, dla_steps, alternatives):
         for m in methods:
             out.append((a, "reduced", m, list(rtols)))
         for m in methods:
-            if m in SHORT_METHODS or m == "RK45":
+            if m in SHORT_METHODS:
                 out.append((a, "numpy+scipy", m, list(rtols)))
         if dla_steps:
             out.append((a, "DLA", "DLA", list(dla_steps)))
@@ -316,9 +317,24 @@ class _NoBar:
         pass
 
 
+class _LogBar(_NoBar):
+    """Progress as a line every 10%, for a log file."""
+
+    def __init__(self, total):
+        self.total, self.n, self.next = total, 0, 0.1
+
+    def update(self, k=1):
+        self.n += k
+        if self.n >= self.next * self.total:
+            print(f"  {self.n}/{self.total} runs", file=sys.stderr, flush=True)
+            self.next += 0.1
+
+
 def _progress(total, enabled):
-    if not enabled or not sys.stderr.isatty():
+    if not enabled:
         return _NoBar()
+    if not sys.stderr.isatty():
+        return _LogBar(total)
     try:
         from tqdm import tqdm
     except ImportError:
