@@ -18,7 +18,8 @@ import numbers
 from ..errors import ModelError, ModelTypeError
 
 __all__ = ["ROUNDOFF", "SCIPY_METHODS", "FIXED_STEP_METHODS", "coordinate_of", "initial_values",
-           "parameter_values", "check_method", "check_tolerances", "check_span", "check_t_eval", "real"]
+           "parameter_values", "check_method", "check_tolerances", "check_span", "check_t_eval",
+           "real", "MAX_T_EVAL"]
 
 #: A radicand within ROUNDOFF * (its scale) below zero is round-off of zero: it is
 #: clipped to 0 (a turning point); further below, the state is off the energy surface.
