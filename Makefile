@@ -8,7 +8,8 @@
 #   make notebooks  re-execute every notebook in book/ and exercises/ in place
 #   make clean      remove everything generated
 #
-# Pieces of `make test` can be run alone: unit, doctest, nbval, site, browser.
+# Pieces of `make test` can be run alone: unit, doctest, nbval, site, browser;
+# `make slow` runs the slow tests (not in `make test`).
 
 SHELL := /bin/bash
 .SHELLFLAGS := -eu -o pipefail -c
@@ -32,7 +33,7 @@ export PIP_DISABLE_PIP_VERSION_CHECK := 1
 .PHONY: help setup mathjax book site derive test unit slow doctest nbval browser notebooks exercises bench clean
 
 help:
-	@sed -n '3,12p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,13p' Makefile | sed 's/^# \{0,1\}//'
 
 # ---------------------------------------------------------------- set-up
 setup: $(SETUP_STAMP) mathjax
