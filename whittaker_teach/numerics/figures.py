@@ -48,8 +48,8 @@ def plot_long_run(data, path=None):
     import matplotlib.pyplot as plt
     matplotlib.rcParams["svg.hashsalt"] = "whittaker-teach"
     order = sorted(data, key=lambda s: s != "sledge")            # the sledge first
-    with plt.rc_context({"font.size": 11}):
-        fig, axes = plt.subplots(1, len(data), figsize=(5.0 * len(data), 4.8), squeeze=False)
+    with plt.rc_context({"font.size": 10}):          # >= 9 pt at the page's width (~7 in)
+        fig, axes = plt.subplots(1, len(data), figsize=(3.75 * len(data), 4.6), squeeze=False)
         for ax, (system, block) in zip(axes[0], ((s, data[s]) for s in order)):
             for i, r in enumerate(block["runs"]):
                 label = (f"DLA, {r['setting']} steps/period" if r["method"] == "DLA"
@@ -57,14 +57,14 @@ def plot_long_run(data, path=None):
                 e = [max(v, 1e-17) for v in r["energy_error"]]
                 ax.loglog(r["t"], e, color="k" if r["method"] == "DLA" else f"C{i}", lw=1.4,
                           label=label)
-            ax.set_title(f"{system}: {block['periods']} periods"
-                         + (" of 2 pi" if system != "sledge" else ""))
-            ax.set_xlabel("t [time units, 1/omega]")
+            ax.set_title(f"{system.replace('_', ' ')}: {block['periods']} "
+                         + ("periods" if system == "sledge" else "× 2π"))
+            ax.set_xlabel("t [1/ω]")
             ax.grid(True, color="0.92")
-        axes[0][0].set_ylabel("relative energy error |E(t) - h| / h")
+        axes[0][0].set_ylabel("|E(t) − h| / h")
         handles, labels = axes[0][0].get_legend_handles_labels()
-        fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=10, frameon=False)
-        fig.tight_layout(rect=(0, 0.14, 1, 1))
+        fig.legend(handles, labels, loc="lower center", ncol=2, fontsize=10, frameon=False)
+        fig.tight_layout(rect=(0, 0.17, 1, 1))
     if path is not None:
         _svg(fig, path)
     return fig
