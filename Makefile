@@ -8,7 +8,8 @@
 #   make notebooks  re-execute every notebook in book/ and exercises/ in place
 #   make clean      remove everything generated
 #
-# Pieces of `make test` can be run alone: unit, doctest, nbval, site, browser.
+# Pieces of `make test` can be run alone: unit, doctest, nbval, site, browser;
+# `make slow` runs the slow tests (not in `make test`).
 
 SHELL := /bin/bash
 .SHELLFLAGS := -eu -o pipefail -c
@@ -29,10 +30,10 @@ NOTEBOOK_DIRS := book exercises
 
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 
-.PHONY: help setup mathjax book site derive test unit doctest nbval browser notebooks exercises bench clean
+.PHONY: help setup mathjax book site derive test unit slow doctest nbval browser notebooks exercises bench clean
 
 help:
-	@sed -n '3,12p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,13p' Makefile | sed 's/^# \{0,1\}//'
 
 # ---------------------------------------------------------------- set-up
 setup: $(SETUP_STAMP) mathjax
@@ -71,9 +72,14 @@ unit: setup
 	  else echo "unit: no tests in $$d yet, skipped"; fi; \
 	done; \
 	if [ -n "$$dirs" ]; then \
-	  echo "PYTHONHASHSEED=0 $(PYTHON) -m pytest$$dirs -q $(PYTEST_ARGS)"; \
-	  PYTHONHASHSEED=0 $(PYTHON) -m pytest $$dirs -q $(PYTEST_ARGS); \
+	  echo "PYTHONHASHSEED=0 $(PYTHON) -m pytest$$dirs -q -m 'not slow' $(PYTEST_ARGS)"; \
+	  PYTHONHASHSEED=0 $(PYTHON) -m pytest $$dirs -q -m "not slow" $(PYTEST_ARGS); \
 	fi
+
+# The tests marked slow (minutes each: a 1e5-period run under tracemalloc, the quick
+# study run twice); not part of `make test`.
+slow: setup
+	PYTHONHASHSEED=0 $(PYTHON) -m pytest tests/unit tests/integration -q -m slow $(PYTEST_ARGS)
 
 doctest: setup
 	@if [ -d whittaker_teach ] && grep -rqs --include='*.py' '>>>' whittaker_teach; then \

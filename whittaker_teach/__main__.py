@@ -8,7 +8,7 @@ Commands::
                                   each with its paper number and its check
     bench derivation [--repeat N] fresh-process time of the whole derivation with
                                   verification, against sympy.physics.mechanics
-    bench numerics [--quick] [--json FILE] [--plot FILE] [--quiet]
+    bench numerics [--quick] [--json FILE] [--csv FILE] [--plot FILE] [--quiet]
                                   speed against error: the full, reduced and exact
                                   models of the sledge (whittaker_teach.numerics)
     grade SUBMISSION.ipynb ... --out grades.csv [--feedback DIR]
@@ -86,6 +86,7 @@ def main(argv=None):
     b.add_argument("--quick", action="store_true", help="numerics: a smaller study")
     b.add_argument("--json", metavar="FILE", help="numerics: write every run to FILE")
     b.add_argument("--plot", metavar="FILE", help="numerics: the error-against-time figure")
+    b.add_argument("--csv", metavar="FILE", help="numerics: every run as CSV")
     b.add_argument("--quiet", action="store_true", help="numerics: no progress bar")
     b.set_defaults(func=_bench)
     g = sub.add_parser("grade", help="grade the students' exercise notebooks into a CSV")

@@ -1,5 +1,5 @@
-"""The work-precision benchmark: its command line, outputs and summary (a tiny study;
-no assertion on timings)."""
+"""The work-precision benchmark: its run set, outputs and summary (tiny studies; no
+assertion on timings)."""
 
 import json
 
@@ -8,38 +8,59 @@ import pytest
 from whittaker_teach import __main__ as cli
 from whittaker_teach.numerics import work_precision as wp
 
-TINY = {"periods": 1, "rtols": (1e-5, 1e-8), "dla_steps": (16,), "repeat": 1}
+TINY = {"periods": 1, "rtols": (1e-5, 1e-8), "dla_steps": (16,), "repeat": 1,
+        "methods": ("DOP853",)}
 
 
 @pytest.fixture(scope="module")
 def tiny():
-    return wp.study(quick=True, progress=False, amplitudes=(0.3,), methods=("DOP853", "Radau"),
-                    rtols=TINY["rtols"], dla_steps=TINY["dla_steps"], periods=1)
+    return wp.study(quick=True, progress=False, amplitudes=(0.3,), methods=("DOP853", "LSODA"),
+                    rtols=TINY["rtols"], dla_steps=TINY["dla_steps"], periods=1, repeat=3)
 
 
 def test_records(tiny):
     runs = tiny["runs"]
-    assert {r["model"] for r in runs} == {"full", "reduced", "DLA", "exact"}
+    assert {r["model"] for r in runs} == set(wp.MODELS)
     for r in runs:
-        assert r["error"] == max(r["err_theta"], r["err_x"], r["err_y"])
-        assert r["seconds"] > 0
+        assert r["error"] == max(r["err_theta"], r["err_x"], r["err_y"], r["err_t"])
+        assert len(r["times"]) == 3 and r["seconds"] > 0
     full = [r for r in runs if r["model"] == "full" and r["method"] == "DOP853"]
     assert full[1]["error"] < full[0]["error"] < 1e-2         # tighter rtol, smaller error
-    assert all(r["err_energy"] is None for r in runs if r["model"] == "reduced")
+    hand = [r for r in runs if r["model"] == "numpy+scipy" and r["method"] == "DOP853"]
+    assert [r["nfev"] for r in hand] == [r["nfev"] for r in full]   # the same equations
     exact = [r for r in runs if r["model"] == "exact"][0]
-    assert exact["error"] < 1e-14
-    assert tiny["exact_cost"]["0.3"]["scalar"] > 0
+    assert exact["err_x_abs"] < 1e-14
+
+
+def test_run_set_and_picks_do_not_depend_on_speed(tiny):
+    again = wp.study(quick=True, progress=False, amplitudes=(0.3,), methods=("DOP853", "LSODA"),
+                     rtols=TINY["rtols"], dla_steps=TINY["dla_steps"], periods=1, repeat=1)
+    assert wp.run_set(again) == wp.run_set(tiny)
+    assert wp.picks(again) == wp.picks(tiny)
+
+
+def test_budget_in_evaluations(monkeypatch):
+    monkeypatch.setattr(wp, "NFEV_BUDGET", 250)
+    res = wp.study(quick=True, progress=False, amplitudes=(0.3,), methods=("DOP853",),
+                   rtols=(1e-3, 1e-6, 1e-9), dla_steps=(), periods=1, repeat=1,
+                   alternatives=False)
+    full = [r for r in res["runs"] if r["model"] == "full"]
+    assert full[-1]["nfev"] > 250 and all(r["nfev"] <= 250 for r in full[:-1])
+    assert len(full) < 3
 
 
 def test_summary_and_table(tiny):
     best = wp.cheapest(tiny, targets=(1e-3, 1e-12))
     row = best[0.3][1e-3]
     assert row["full"] is not None and row["reduced"] is not None
-    assert row["ratio"] == pytest.approx(row["reduced"]["seconds"] / row["full"]["seconds"])
     assert best[0.3][1e-12]["exact"]["model"] == "exact"
+    assert best[0.3]["floor"]["full"]["error"] == min(
+        r["error"] for r in tiny["runs"] if r["model"] == "full")
     text = wp.summary(tiny)
-    assert "reduced / full" in text and "one exact evaluation" in text
-    assert "err theta" in wp.table(tiny)
+    assert "floor" in text and "package / numpy+scipy" in text
+    for block in (text, wp.table(tiny)):
+        assert max(len(line) for line in block.splitlines()) <= 80
+    assert wp.to_csv(tiny).splitlines()[0].startswith("amplitude,model,method")
 
 
 def test_plot_is_deterministic(tiny, tmp_path):
@@ -52,15 +73,24 @@ def test_plot_is_deterministic(tiny, tmp_path):
 
 def test_command_line(monkeypatch, tmp_path, capsys):
     monkeypatch.setattr(wp, "QUICK", TINY)
-    monkeypatch.setattr(wp, "AMPLITUDES", (0.3,))
-    out = tmp_path / "wp.json"
+    out, csv = tmp_path / "wp.json", tmp_path / "wp.csv"
     real = wp.study
     monkeypatch.setattr(wp, "study", lambda quick, progress: real(
-        quick=quick, progress=progress, amplitudes=(0.3,), methods=("DOP853",)))
-    assert cli.main(["bench", "numerics", "--quick", "--quiet", "--json", str(out)]) == 0
+        quick=quick, progress=progress, amplitudes=(0.3,)))
+    assert cli.main(["bench", "numerics", "--quick", "--quiet", "--json", str(out),
+                     "--csv", str(csv)]) == 0
     printed = capsys.readouterr().out
-    assert "cheapest run with error <= target" in printed and "error 1e-06" in printed
+    assert "cheapest run (by evaluations)" in printed and "error 1e-06" in printed
     assert json.loads(out.read_text())["meta"]["periods"] == 1
+    assert csv.read_text().count("\n") == len(json.loads(out.read_text())["runs"]) + 1
+
+
+@pytest.mark.slow
+def test_quick_study_is_reproducible():
+    """`bench numerics --quick` twice: the same run set, the same picks by evaluations."""
+    a = wp.study(quick=True, progress=False, repeat=1)
+    b = wp.study(quick=True, progress=False, repeat=1)
+    assert wp.run_set(a) == wp.run_set(b) and wp.picks(a) == wp.picks(b)
 
 
 def test_failed_run_is_recorded_not_raised():

@@ -1,22 +1,32 @@
 """Numerics: the full, reduced and exact models, integrated and compared.
 
+One entry per model; each calls ``state`` (input checks, then the generated
+code) and ``ivp`` (one integration), and nothing calls back:
+
 ==========================  ====================================================
-``codegen``                 the symbolic core's equations as Python functions
-``time_model``              the full model (1.4) in t: ``ChaplyginSystem.simulate``
-``reduced_model``           the reduced model (1.26) in q_eps: ``Reduction.simulate``
-``integrators``             the discrete Lagrange-d'Alembert integrator (``method="DLA"``)
-``exact``                   the sledge in closed form (Bessel functions)
+``time_model``              entry: the full model in t, ``ChaplyginSystem.simulate``
+``reduced_model``           entry: the reduced model (1.26) in q_eps, ``Reduction.simulate``
+``integrators``             entry: the discrete Lagrange-d'Alembert integrator (``method="DLA"``)
+``exact``                   entry: the sledge in closed form (Bessel functions)
+``scene``                   a motion within a requested error: picks the model and the method
+``state``                   the starting state of each model: ``validate``, then ``codegen``
+``codegen``                 the symbolic core's equations as Python functions (cached)
+``validate``                checks of the numerical input (ModelError naming the mistake)
+``ivp``                     one call of scipy's ``solve_ivp``; zeros inside steps
+``results``                 what a simulation returns: ``Trajectory``, ``Path``
 ``work_precision``          speed against error: ``python -m whittaker_teach bench numerics``
 ``hard_cases``              the hard cases, each run and judged
 ``figures``                 regenerates the book's stored results (``make bench``)
 ==========================  ====================================================
 
-Importing this package imports none of them (nor numpy or scipy).
+Imports run one way: entries -> state -> (validate, codegen); entries -> ivp,
+results; ``time_model`` -> ``integrators`` for ``method="DLA"``.  No circles
+(tested).  Importing this package imports none of them (nor numpy or scipy).
 """
 
 from importlib import import_module
 
-__all__ = ["codegen", "time_model", "reduced_model", "integrators", "exact",
+__all__ = ["codegen", "time_model", "reduced_model", "integrators", "exact", "scene", "state",
            "work_precision", "hard_cases", "results", "validate", "figures", "ivp"]
 
 

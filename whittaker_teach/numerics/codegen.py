@@ -118,6 +118,7 @@ class TimeModel:
     velocities: object          # numpy: (y..., p...) -> list of all n velocities
     from_independent: object    # numpy: (q..., qdot_sigma..., p...) -> all n velocities
     poles: list = field(default_factory=list)    # [(expr text, function(y, p))]
+    poles_np: list = field(default_factory=list)  # [(expr text, numpy f(*y, *p))]
 
 
 def _time_exprs_chaplygin(S):
@@ -201,10 +202,11 @@ def _build_time(S, formulation):
     sig = [S.qd[c] for c in S.independent_coordinates]
     vel_sig = [S.qd[c] if c in S.independent_coordinates else S._phi[S.q[c]]
                for c in S.coordinates]
-    poles = []
+    poles, poles_np = [], []
     if formulation == "chaplygin":
         for d in pole_factors(f, q):
             poles.append((str(d), _unpack(_lambdify(args, d), len(y))))
+            poles_np.append((str(d), _lambdify(args, d, "numpy")))
     if f is None:                           # large: solved numerically per call
         rhs, jac = _numeric_multiplier(S, P), None
     else:
@@ -212,7 +214,7 @@ def _build_time(S, formulation):
         jac = _unpack(_lambdify(args, sp.Matrix(f).jacobian(y).tolist()), len(y))
     return TimeModel(formulation, [s.name for s in y], len(S.coordinates), rhs, jac,
                      _lambdify(args, E, "numpy"), _lambdify(args, vel, "numpy"),
-                     _lambdify(q + sig + P, vel_sig, "numpy"), poles)
+                     _lambdify(q + sig + P, vel_sig, "numpy"), poles, poles_np)
 
 
 def _unpack(fn, n):

@@ -35,12 +35,21 @@ import numpy as np
 from scipy.special import jv
 
 from ..errors import ModelError
+from .ivp import ARITHMETIC
 from .validate import ROUNDOFF, real
 
-__all__ = ["SledgeExact", "sledge_exact", "terms_needed"]
+__all__ = ["SledgeExact", "sledge_exact", "terms_needed", "MAX_TERMS"]
 
 #: Terms with |J_n(a)| below this are dropped.
 CUT = 1e-18
+#: The most Bessel terms the closed form will use; a larger amplitude is refused (each
+#: evaluation costs one sine per term, and the coefficients one array of that length).
+MAX_TERMS = 20_000
+
+
+def _top(a):
+    """An upper bound of the terms needed: J_n(a) < 1e-18 beyond a + 10 a^(1/3) + 40."""
+    return abs(a) + 10 * abs(a) ** (1 / 3) + 40
 
 
 def terms_needed(a):
@@ -48,8 +57,17 @@ def terms_needed(a):
 
     >>> terms_needed(0.5), terms_needed(1.5)
     (14, 18)
+    >>> terms_needed(5e7)                  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    whittaker_teach.errors.ModelError: the closed form ... a = 5e+07 needs about 5.00e+07 Bessel terms ...
     """
-    top = int(abs(a) + 10 * abs(a) ** (1 / 3) + 40)
+    if not _top(a) <= MAX_TERMS:
+        raise ModelError(f"the closed form of the sledge with amplitude a = {a:.6g} needs about "
+                         f"{_top(a):.2e} Bessel terms (limit MAX_TERMS = {MAX_TERMS}; each "
+                         "evaluation costs one sine per term): use the full model, "
+                         "system.simulate(...)")
+    top = int(_top(a))
     j = np.abs(jv(np.arange(top), abs(a)))
     big = np.nonzero(j > CUT)[0]
     return int(big[-1]) + 1 if len(big) else 1
@@ -76,6 +94,14 @@ class SledgeExact:
     """
 
     def __init__(self, params, a=None, phi=0.0, C=1.0, *, h=None, x0=0.0, y0=0.0, t0=0.0):
+        try:
+            self._init(params, a, phi, C, h, x0, y0, t0)
+        except ARITHMETIC as err:
+            raise ModelError(f"sledge_exact: the arithmetic failed ({err}): the parameters, "
+                             "the amplitude or the speed are out of floating point's range"
+                             ) from None
+
+    def _init(self, params, a, phi, C, h, x0, y0, t0):
         self.m, self.J, self.k = (_param(params, n) for n in ("m", "J", "k"))
         self.C = real(C, "C")
         self.phi, self.x0, self.y0, self.t0 = (real(v, n) for v, n in
@@ -86,6 +112,7 @@ class SledgeExact:
         if a is None:
             a = self._amplitude(real(h, "h"))
         self.a = real(a, "a")
+        terms_needed(self.a)                       # refuses a hopeless amplitude first
         self.omega = self.k / math.sqrt(self.J)
         self.period = 2 * math.pi / self.omega
         self.h = 0.5 * self.m * self.C ** 2 + 0.5 * self.k ** 2 * self.a ** 2

@@ -3,7 +3,8 @@
 Writes into ``book/figures/numerics/`` (or ``--out DIR``):
 
 =============================  ===============================================
-``work_precision.json/.svg``   the full work-precision study (``bench numerics``)
+``work_precision.json/.csv``   the full work-precision study (``bench numerics``)
+``work_precision.svg``         its figure
 ``long_run.json/.svg``         hard case 6: 10^4 periods of the sledge, 10^3 of the sleigh
 ``stiff.json``                 hard case 5: k^2/J = 1e4 and 1e6, every method
 ``hard_cases.json``            the outcome of every hard case at full size
@@ -39,28 +40,31 @@ def _svg(fig, path):
 
 
 def plot_long_run(data, path=None):
-    """Relative energy error against time, one panel per system."""
+    """Relative energy error against time, one panel per system (text >= 9 pt at page
+    width, the legend below the panels)."""
     import matplotlib
     if path is not None and "matplotlib.pyplot" not in sys.modules:
         matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     matplotlib.rcParams["svg.hashsalt"] = "whittaker-teach"
-    fig, axes = plt.subplots(1, len(data), figsize=(5.4 * len(data), 4.2), squeeze=False)
     order = sorted(data, key=lambda s: s != "sledge")            # the sledge first
-    for ax, (system, block) in zip(axes[0], ((s, data[s]) for s in order)):
-        for i, r in enumerate(block["runs"]):
-            label = (f"DLA, {r['setting']} steps/period" if r["method"] == "DLA"
-                     else f"{r['method']}, rtol {r['setting']:.0e}")
-            e = [max(v, 1e-17) for v in r["energy_error"]]
-            ax.loglog(r["t"], e, color="k" if r["method"] == "DLA" else f"C{i}", lw=1.2,
-                      label=label)
-        ax.set_title(f"{system}: {block['periods']} periods"
-                     + (" of 2 pi" if system != "sledge" else ""))
-        ax.set_xlabel("t")
-        ax.grid(True, color="0.92")
-    axes[0][0].set_ylabel("|E(t) - h| / h")
-    axes[0][0].legend(fontsize=8)
-    fig.tight_layout()
+    with plt.rc_context({"font.size": 10}):          # >= 9 pt at the page's width (~7 in)
+        fig, axes = plt.subplots(1, len(data), figsize=(3.75 * len(data), 4.6), squeeze=False)
+        for ax, (system, block) in zip(axes[0], ((s, data[s]) for s in order)):
+            for i, r in enumerate(block["runs"]):
+                label = (f"DLA, {r['setting']} steps/period" if r["method"] == "DLA"
+                         else f"{r['method']}, rtol {r['setting']:.0e}")
+                e = [max(v, 1e-17) for v in r["energy_error"]]
+                ax.loglog(r["t"], e, color="k" if r["method"] == "DLA" else f"C{i}", lw=1.4,
+                          label=label)
+            ax.set_title(f"{system.replace('_', ' ')}: {block['periods']} "
+                         + ("periods" if system == "sledge" else "× 2π"))
+            ax.set_xlabel("t [1/ω]")
+            ax.grid(True, color="0.92")
+        axes[0][0].set_ylabel("|E(t) − h| / h")
+        handles, labels = axes[0][0].get_legend_handles_labels()
+        fig.legend(handles, labels, loc="lower center", ncol=2, fontsize=10, frameon=False)
+        fig.tight_layout(rect=(0, 0.17, 1, 1))
     if path is not None:
         _svg(fig, path)
     return fig
@@ -70,6 +74,9 @@ def _work_precision(out):
     from . import work_precision as wp
     res = wp.study(quick=False, progress=True)
     _dump(res, os.path.join(out, "work_precision.json"))
+    with open(os.path.join(out, "work_precision.csv"), "w") as f:
+        f.write(wp.to_csv(res))
+    print(f"wrote {os.path.join(out, 'work_precision.csv')}", flush=True)
     print(wp.table(res))
     print(wp.summary(res))
     _svg(wp.plot(res), os.path.join(out, "work_precision.svg"))

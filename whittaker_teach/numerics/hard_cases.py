@@ -61,10 +61,17 @@ class CaseResult:
     details: dict = field(default_factory=dict)
 
     def __str__(self):
+        """At most 80 characters a line (readable on a phone)."""
+        import textwrap
         err = "" if self.error is None else f"  error {self.error:.1e} (tol {self.tolerance:.0e})"
-        return (f"case {self.case} [{self.system}] {self.title}: "
-                f"{'OK' if self.ok else 'FAILED'}{err}\n  expected: {self.expected}\n"
-                f"  outcome:  {self.outcome}")
+        head = textwrap.wrap(f"case {self.case} [{self.system}] {self.title}: "
+                             f"{'OK' if self.ok else 'FAILED'}{err}", 80,
+                             subsequent_indent="    ")
+        body = (textwrap.wrap(self.expected, 80, initial_indent="  expected: ",
+                              subsequent_indent="            ")
+                + textwrap.wrap(self.outcome, 80, initial_indent="  outcome:  ",
+                                subsequent_indent="            "))
+        return "\n".join(head + body)
 
 
 # ----------------------------------------------------------------- helpers

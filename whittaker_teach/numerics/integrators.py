@@ -34,6 +34,7 @@ import numpy as np
 from ..errors import ModelError
 from . import codegen, validate
 from .results import CoordDict, Trajectory
+from .state import check_poles
 
 __all__ = ["simulate_dla", "dla_steps", "MAX_ENERGY_ERROR"]
 
@@ -51,7 +52,6 @@ def _start(system, q0, qdot0, params):
     P = validate.parameter_values(S, params)
     m = codegen.dla_model(S)
     qv = [q[c] for c in S.coordinates]
-    from .time_model import check_poles
     check_poles(S, qv, P)
     with np.errstate(all="ignore"):
         allv = np.array([float(w) for w in m.from_independent(

@@ -19,9 +19,11 @@ from scipy.integrate import solve_ivp
 
 from ..errors import ModelError
 
-__all__ = ["solve", "as_fun"]
+__all__ = ["solve", "as_fun", "roots_within_steps", "ARITHMETIC"]
 
 _BAD = (ZeroDivisionError, ValueError, OverflowError)
+#: The raw arithmetic errors that must never reach a user (they become ModelErrors).
+ARITHMETIC = (OverflowError, ZeroDivisionError, FloatingPointError)
 
 
 def as_fun(rhs, p, n):
@@ -72,9 +74,94 @@ def solve(rhs, jac, span, y0, p, method, rtol, atol, *, what, events=None, dense
                         dense_output=dense, t_eval=t_eval, max_step=max_step, **kw)
     if sol.status == -1:
         where = sol.t[-1] if len(sol.t) else span[0]
-        raise ModelError(f"{what}: the integrator ({method}) failed at {where:.10g}: "
+        err = ModelError(f"{what}: the integrator ({method}) failed at {where:.10g}: "
                          f"{sol.message}")
+        err.sol = sol
+        raise err
     if not np.all(np.isfinite(sol.y)):
-        raise ModelError(f"{what}: the integrator ({method}) produced non-finite values; "
+        err = ModelError(f"{what}: the integrator ({method}) produced non-finite values; "
                          "the motion reached a singular point of the equations")
+        err.sol = sol
+        raise err
     return sol
+
+
+# ----------------------------------------------------------------- zeros inside steps
+#: Samples per step for :func:`roots_within_steps` (Chebyshev points of the first kind).
+NODES = 16
+
+
+def _cheb_matrix(n=NODES):
+    j = np.arange(n)
+    x = np.cos(np.pi * (j + 0.5) / n)                       # nodes on [-1, 1]
+    T = np.cos(np.outer(np.arange(n), np.pi * (j + 0.5) / n))   # T_k(x_j)
+    return x, T
+
+
+_X, _T = _cheb_matrix()
+
+
+def roots_within_steps(sol, g, first=False):
+    """Every zero of ``g(t, Y)`` along a dense solution, including pairs of zeros that
+    fall inside one step (a sign change that the values at the step ends do not show).
+
+    ``g`` takes the times (1-d array) and the states (n x len(t)) and returns an
+    array.  On each step g is sampled at NODES Chebyshev points of the
+    interpolant and fitted by a Chebyshev series; the series' critical points
+    split the step into pieces on which g is monotone (to the fit's accuracy);
+    a piece whose ends differ in sign holds one zero, located by Brent's
+    method on g itself.  Returns the sorted times; ``first``: at most one.
+
+    >>> from scipy.integrate import solve_ivp
+    >>> s = solve_ivp(lambda t, y: [1.0], (0, 2), [0.0], dense_output=True, max_step=10)
+    >>> g = lambda t, Y: (Y[0] - 1) ** 2 - 1e-8       # zeros 1 -+ 1e-4, one step
+    >>> [round(r, 6) for r in roots_within_steps(s, g)]
+    [0.9999, 1.0001]
+    """
+    from numpy.polynomial import chebyshev as C
+    from scipy.optimize import brentq
+    ts = np.asarray(sol.t if hasattr(sol, "t") and not hasattr(sol, "ts") else sol.ts)
+    dense = sol.sol if hasattr(sol, "sol") else sol
+    if dense is None or len(ts) < 2:
+        return []
+    lo, hi = np.minimum(ts[:-1], ts[1:]), np.maximum(ts[:-1], ts[1:])
+    mid, half = (lo + hi) / 2, (hi - lo) / 2
+    tt = (mid[:, None] + half[:, None] * _X[None, :])
+    with np.errstate(all="ignore"):
+        vals = np.asarray(g(tt.ravel(), dense(tt.ravel())), dtype=float).reshape(tt.shape)
+        coef = vals @ _T.T * (2.0 / NODES)
+    coef[:, 0] /= 2
+    tail = np.sum(np.abs(coef[:, 1:]), axis=1)
+    maybe = ~(np.abs(coef[:, 0]) > 1.01 * tail) | ~np.isfinite(tail)
+    back = bool(ts[-1] < ts[0])
+    order = np.arange(len(lo))[::-1] if back else np.arange(len(lo))
+    found = []
+
+    def gs(t):
+        return float(np.asarray(g(np.array([t]), dense(np.array([t]))), dtype=float)[0])
+    for i in order:
+        if not maybe[i]:
+            continue
+        a, b = lo[i], hi[i]
+        cuts = [-1.0, 1.0]
+        if np.all(np.isfinite(coef[i])):
+            crit = C.chebroots(C.chebder(coef[i]))
+            cuts += [float(r.real) for r in np.atleast_1d(crit)
+                     if abs(r.imag) < 1e-9 and -1 < r.real < 1]
+        pts = sorted((mid[i] + half[i] * np.array(cuts)).tolist(), reverse=back)
+        vs = [gs(t) for t in pts]
+        for (t0, v0), (t1, v1) in zip(zip(pts, vs), zip(pts[1:], vs[1:])):
+            if v0 == 0:
+                r = t0
+            elif v0 * v1 < 0:
+                r = brentq(gs, t0, t1, xtol=1e-15 * max(1.0, abs(t0)), rtol=1e-15)
+            else:
+                continue
+            if not found or abs(r - found[-1]) > 1e-14 * max(1.0, abs(r)):
+                found.append(r)
+        if vs and vs[-1] == 0 and (not found or found[-1] != pts[-1]):
+            found.append(pts[-1])
+        if first and found:
+            return found[:1]
+    found = sorted(set(found), reverse=back)
+    return found

@@ -45,13 +45,17 @@ import numpy as np
 
 from ..errors import ChartError, ModelError
 from . import codegen, validate
-from .ivp import solve
+from .ivp import ARITHMETIC, roots_within_steps, solve
 from .results import CoordDict, Path, Switch
+from .state import choose_formulation, initial_state
 
 __all__ = ["simulate", "reduced_initial_state", "DEFAULT_TURNING_TOL"]
 
 DEFAULT_TURNING_TOL = 1e-3
 RESUME_FACTOR = 4.0
+#: A starting slope |q'_nu| beyond this is refused: its square is out of floating point's
+#: range (and the chart quality rho < 1e-150 is far below any turning_tol anyway).
+MAX_SLOPE = 1e150
 
 
 def _n(c):
@@ -125,8 +129,9 @@ class _Chart:
         qp = zl[self.nu:2 * self.nu]
         R, _D, scale = self.radicands(s, zl)
         R = max(R, 0.0)
-        return min(1 / math.sqrt(1 + sum(x * x for x in qp)),
-                   math.sqrt(R / scale) if scale > 0 else 1.0)
+        if not scale > 0:                   # h = 0 = A0: no kinetic energy at all
+            return 0.0
+        return min(1 / math.sqrt(1 + sum(x * x for x in qp)), math.sqrt(R / scale))
 
     def speed(self, s, zl):
         """qdot_eps = direction sqrt(R/D) (1.12), R clipped at zero."""
@@ -165,7 +170,6 @@ class _TimeBridge:
     """The full model in t, used across a turning point of q_eps."""
 
     def __init__(self, system, p, eps):
-        from .time_model import choose_formulation
         self.S, self.p = system, p
         self.form = choose_formulation(system, "auto")
         self.fm = codegen.time_model(system, self.form)
@@ -233,6 +237,19 @@ def simulate(red, q0, qp0, h, span, params, method="DOP853", rtol=1e-9, atol=Non
              on_turning_point="raise", turning_tol=DEFAULT_TURNING_TOL, t0=0.0, dense=True,
              max_switches=1000, max_bridge_time=None):
     """Integrate the reduced model in q_eps; see :meth:`Reduction.simulate`."""
+    try:
+        return _simulate(red, q0, qp0, h, span, params, method, rtol, atol, on_turning_point,
+                         turning_tol, t0, dense, max_switches, max_bridge_time)
+    except ARITHMETIC as err:
+        raise ModelError(f"{red.system.name}, reduced model in {_n(red._eps)}: the arithmetic "
+                         f"failed ({err}); the initial state, h or the parameters are out of "
+                         "the range of floating point (a speed or a slope q' too small or too "
+                         "large: with qdot_eps near 0 the chart degenerates, use the time "
+                         "model)") from None
+
+
+def _simulate(red, q0, qp0, h, span, params, method, rtol, atol, on_turning_point,
+              turning_tol, t0, dense, max_switches, max_bridge_time):
     method, rtol, atol, q, qp, h, (a, b), p = _validate(
         red, q0, qp0, h, span, params, method, rtol, atol, on_turning_point)
     tau = validate.real(turning_tol, "turning_tol")
@@ -243,6 +260,16 @@ def simulate(red, q0, qp0, h, span, params, method="DOP853", rtol=1e-9, atol=Non
     chart = _Chart(red, p, h, tau)
     z0 = ([q[c] for c in red._nus] + [qp[c] for c in red._nus]
           + [validate.real(t0, "t0")] + [q[c] for c in S.dependent_coordinates])
+    big = [(_n(c), qp[c]) for c in red._nus if not abs(qp[c]) <= MAX_SLOPE]
+    if big:
+        e = _n(eps)
+        err = ChartError(f"qdot_{e} is (nearly) zero at the start, {e} = {a:.10g}: the slope "
+                         f"{big[0][0]}' = d{big[0][0]}/d{e} = {big[0][1]:.3g} is beyond "
+                         f"{MAX_SLOPE:.0e} (q' = qdot/qdot_{e}, 1.5); {e} cannot replace time "
+                         "here, the reduction degenerates.  Use the time model "
+                         "(system.simulate) or another independent coordinate")
+        err.coordinate, err.value, err.t = e, a, float(t0)
+        raise err
     R0, D0, scale0 = chart.radicands(a, z0)
     if _clip(R0, abs(scale0)) is None:
         raise ModelError(f"the initial state violates the energy integral: with h = {h:g}, "
@@ -373,9 +400,6 @@ class _Run:
         h, p, nu = self.h, self.p, chart.nu
         zero_qp = [0.0] * nu
 
-        def turn(t, y):
-            return y[B.iv[je]]
-
         def recover(t, y):
             q, v = B.split(y)
             qm = dict(zip(self.S.coordinates, q))
@@ -386,28 +410,38 @@ class _Run:
 
         def end(t, y):
             return y[ie] - b
-        turn.terminal = self.mode == "raise"
         recover.terminal, recover.direction = True, 1
         end.terminal = True
-        return [turn, recover, end]
+        return [recover, end]
+
+    def _turns(self, sol):
+        """[(q_eps, t)] where qdot_eps vanishes along a time segment, found inside the
+        steps too (x may reverse by less than a step and come back within it)."""
+        B = self.bridge
+        iv = B.iv[B.je]
+
+        def g(t, Y):
+            return Y[iv]
+        ts = roots_within_steps(sol, g)
+        return [(float(sol.sol(t)[B.ie]), float(t)) for t in ts]
 
     def _time_segment(self, y, t):
         """Integrate in t from a turning region: ('recover' | 'end', y, t)."""
         B = self.bridge
         events = self._time_events(RESUME_FACTOR * self.tau)
         sol = solve(B.fm.rhs, B.fm.jac, (t, t + self._time_limit(t)), y, self.p,
-                    self.method, self.rtol, self.atol, events=events, dense=self.dense,
+                    self.method, self.rtol, self.atol, events=events, dense=True,
                     what=f"{self.S.name}, time model across a turning point of "
                          f"{_n(self.eps)}")
         self.nfev += sol.nfev
         self.njev += sol.njev
+        self.turns.extend(self._turns(sol))
+        sol.sol = None                       # the steps are kept; the interpolants are not
         self.segments.append(("time", B, sol, len(sol.t)))
-        for te, ye in zip(sol.t_events[0], sol.y_events[0]):
-            self.turns.append((float(ye[B.ie]), float(te)))
-        if len(sol.t_events[2]):
-            return "end", sol.y_events[2][0], float(sol.t_events[2][0])
         if len(sol.t_events[1]):
-            return "recover", sol.y_events[1][0], float(sol.t_events[1][0])
+            return "end", sol.y_events[1][0], float(sol.t_events[1][0])
+        if len(sol.t_events[0]):
+            return "recover", sol.y_events[0][0], float(sol.t_events[0][0])
         raise ChartError(f"{_n(self.eps)} stays (nearly) stationary: in "
                          f"{self._time_limit(t):.3g} time units after t = {t:.6g} the chart "
                          f"{_n(self.eps)} did not become regular again; set max_bridge_time "
@@ -417,8 +451,14 @@ class _Run:
     def _degenerate_start(self, chart, s, z):
         rho = chart.quality(s, z)
         e = _n(self.eps)
+        R, _D, scale = chart.radicands(s, z)
+        turning = ""
+        if R <= validate.ROUNDOFF * abs(scale) or not scale > 0:
+            turning = (f"the start is a turning point of {e} (h = {self.h:.6g} leaves no "
+                       f"kinetic energy: 2(h + A0) = {R:.3g}, 1.12); ")
         err = ChartError(
-            f"qdot_{e} is (nearly) zero at the start, {e} = {s:.10g}: the chart quality rho = "
+            f"qdot_{e} is (nearly) zero at the start, {e} = {s:.10g}: {turning}"
+            f"the chart quality rho = "
             f"{rho:.2e} <= turning_tol = {self.tau:g} (|q'| = dq/d{e} too large, or almost no "
             f"kinetic energy left); {e} cannot replace time here (1.5), the reduction "
             f"degenerates.  Use the time model (system.simulate), another independent "
@@ -432,13 +472,16 @@ class _Run:
         e = _n(self.eps)
         events = self._time_events(RESUME_FACTOR * self.tau)
         sol = solve(B.fm.rhs, B.fm.jac, (t, t + self._time_limit(t)), y, self.p,
-                    self.method, self.rtol, self.atol, events=events, dense=self.dense,
+                    self.method, self.rtol, self.atol, events=events, dense=True,
                     what=f"{self.S.name}, time model after {e} = {s:.6g}")
         b = self.span[1]
         tol = 10 * (self.atol + self.rtol * abs(b))
-        if len(sol.t_events[0]):
-            s_t, t_t = float(sol.y_events[0][0][B.ie]), float(sol.t_events[0][0])
+        turns = self._turns(sol)
+        if turns:
+            s_t, t_t = turns[0]
             if abs(s_t - b) <= tol:
+                _cut(sol, t_t)                   # the path ends at the turning point
+                sol.sol = None
                 self.nfev += sol.nfev
                 self.segments.append(("time", B, sol, len(sol.t)))
                 self.turns.append((s_t, t_t))
@@ -453,7 +496,7 @@ class _Run:
                 "(in time, then in the other direction)")
             err.coordinate, err.value, err.t = e, s_t, t_t
             raise err
-        if len(sol.t_events[2]):
+        if len(sol.t_events[1]):
             self.nfev += sol.nfev
             self.segments.append(("time", B, sol, len(sol.t)))
             self.switches.append(Switch(s, t, chart.name, "t", "nearly singular chart up to "
@@ -494,6 +537,13 @@ class _Run:
                     list(coords), self.switches, self.turns,
                     [(k, getattr(o, "name", "t"), float(sol.t[0]), float(sol.t[keep - 1]))
                      for k, o, sol, keep in self.segments], dense)
+
+
+def _cut(sol, t_end):
+    """Keep the steps of ``sol`` before ``t_end`` and end it there (dense output needed)."""
+    keep = (sol.t - t_end) * np.sign(sol.t[-1] - sol.t[0]) < 0
+    sol.y = np.column_stack([sol.y[:, keep], sol.sol(t_end)])
+    sol.t = np.append(sol.t[keep], t_end)
 
 
 def _pole_events(chart):
@@ -569,7 +619,6 @@ def reduced_initial_state(red, q0, qdot0, params):
     >>> qp0, round(h, 12)
     ({'theta': 0.5}, 3.221892820819)
     """
-    from .time_model import initial_state
     S, eps = red.system, red._eps
     y0, p, fm = initial_state(S, q0, qdot0, params, "chaplygin")
     n = len(S.coordinates)

@@ -35,95 +35,59 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ModelError
-from . import codegen, validate
-from .ivp import solve
+from . import validate
+from .ivp import ARITHMETIC, roots_within_steps, solve
 from .results import CoordDict, Trajectory
+from .state import POLE_TOL, choose_formulation, initial_state
 
 __all__ = ["simulate", "choose_formulation", "initial_state", "POLE_TOL"]
 
-#: An initial state where a denominator of the constraints is smaller than this
-#: is refused (the dependent velocities would be round-off divided by round-off).
-POLE_TOL = 1e-12
+
+def _first_pole(fm, sol, p):
+    """(t, text) of the first zero of a pole factor of (1.4) along ``sol``, looking inside
+    every step (a pole crossed twice within one step shows no sign change at its ends)."""
+    best = None
+    for text, fn in fm.poles_np:
+        def g(t, Y, fn=fn):
+            return fn(*Y, *p)
+        hit = roots_within_steps(sol, g, first=True)
+        if hit and (best is None or abs(hit[0] - sol.t[0]) < abs(best[0] - sol.t[0])):
+            best = (hit[0], text)
+    return best
 
 
-def choose_formulation(system, formulation="auto"):
-    """``formulation``, with ``"auto"`` resolved (see the module docstring)."""
-    if formulation != "auto":
-        if formulation not in ("chaplygin", "multiplier"):
-            raise ModelError(f"unknown formulation {formulation!r}: use 'auto', "
-                             "'chaplygin' (1.4) or 'multiplier' (Lagrange-d'Alembert)")
-        if formulation == "multiplier":
-            codegen.constraint_rows(system)          # linear constraints, or ModelError
-        return formulation
-    cache = codegen.cache_of(system)
-    if "auto" not in cache:
-        S = system
-        q = [S.q[c] for c in S.coordinates]
-        choice = "chaplygin"
-        if codegen.pole_factors(list(S._phi.values()), q):
-            try:
-                codegen.constraint_rows(S)
-                choice = "multiplier"
-            except ModelError:
-                pass
-        cache["auto"] = choice
-    return cache["auto"]
-
-
-def initial_state(system, q0, qdot0, params, formulation):
-    """The state vector of ``formulation`` from ``q0`` (all coordinates) and ``qdot0``
-    (the independent ones); also the parameter list and the model."""
-    S = system
-    deps = S.dependent_coordinates
-    q = validate.initial_values(S, q0, "q0", S.coordinates)
-    v = validate.initial_values(
-        S, qdot0, "qdot0", S.independent_coordinates, forbidden=deps,
-        why_forbidden="is a dependent coordinate: its velocity follows from the constraint "
-                      "(1.3); give the velocities of the independent coordinates only")
-    p = validate.parameter_values(S, params)
-    fm = codegen.time_model(S, formulation)
-    qv = [q[c] for c in S.coordinates]
-    vs = [v[c] for c in S.independent_coordinates]
-    check_poles(S, qv, p)
-    with np.errstate(all="ignore"):
-        allv = [float(w) for w in fm.from_independent(*qv, *vs, *p)]
-    if not all(np.isfinite(allv)):
-        bad = [c.func.__name__ for c, w in zip(S.coordinates, allv) if not np.isfinite(w)]
-        raise ModelError(f"the constraint for {', '.join(bad)}dot cannot be evaluated at the "
-                         "initial state (a pole of the constraint, 1.3): start elsewhere")
-    y0 = qv + (vs if formulation == "chaplygin" else allv)
-    return np.array(y0), p, fm
-
-
-def check_poles(system, qv, p):
-    """ModelError if the coordinates ``qv`` are (nearly) at a pole of the constraints."""
-    for text, fn in codegen.constraint_poles(system):
-        if abs(fn(*qv, *p)) < POLE_TOL:
-            raise ModelError(f"the initial state is (nearly) at a pole of the constraints "
-                             f"(1.3), {text} = {fn(*qv, *p):.1e}: the independent velocities "
-                             "do not determine the dependent ones there; start elsewhere")
-
-
-def _pole_events(fm, p):
-    events = []
-    for text, fn in fm.poles:
-        def ev(t, y, fn=fn):
-            return fn(y.tolist(), p)
-        ev.terminal = True
-        ev.text = text
-        events.append(ev)
-    return events
+def _pole_error(system, where, text):
+    return ModelError(
+        f"the Chaplygin form (1.4) of the {system.name} reaches a pole, {text} = 0, at "
+        f"t = {where:.10g}: the constraints solved for the dependent velocities are singular "
+        "there; use formulation='multiplier' (the default 'auto' does), which is regular")
 
 
 def simulate(system, q0, qdot0, t_span, params, method="DOP853", rtol=1e-9, atol=None, *,
-             formulation="auto", dt=None, t_eval=None, dense=True, max_energy_error=1e-2):
+             formulation="auto", dt=None, t_eval=None, dense=None, max_energy_error=1e-2):
     """Integrate the full model in t; see :meth:`ChaplyginSystem.simulate`.
 
+    ``dense`` (interpolation by ``traj(t)``) defaults to True without ``t_eval``
+    and to False with it: a long run then keeps only the points asked for.
     ``dt`` and ``max_energy_error`` belong to ``method="DLA"`` (see
     :func:`~whittaker_teach.numerics.integrators.simulate_dla`)."""
+    try:
+        return _simulate(system, q0, qdot0, t_span, params, method, rtol, atol, formulation,
+                         dt, t_eval, dense, max_energy_error)
+    except ARITHMETIC as err:
+        raise ModelError(f"{system.name}, time model: the arithmetic failed ({err}); the "
+                         "initial state or the parameters are out of the range of floating "
+                         "point (too large or too small)") from None
+
+
+def _simulate(system, q0, qdot0, t_span, params, method, rtol, atol, formulation, dt, t_eval,
+              dense, max_energy_error):
     method = validate.check_method(method)
     t_span = validate.check_span(t_span, "t_span")
     formulation = choose_formulation(system, formulation)
+    t_eval = validate.check_t_eval(t_eval, t_span)
+    if dense is None:
+        dense = t_eval is None
     if method == "DLA":
         from .integrators import simulate_dla
         if dt is None:
@@ -138,20 +102,25 @@ def simulate(system, q0, qdot0, t_span, params, method="DOP853", rtol=1e-9, atol
                          "its own steps (set rtol and atol)")
     rtol, atol = validate.check_tolerances(rtol, atol)
     y0, p, fm = initial_state(system, q0, qdot0, params, formulation)
-    events = _pole_events(fm, p) if formulation == "chaplygin" else None
-    for ev in events or ():
-        if ev(t_span[0], y0) == 0:
+    poles = formulation == "chaplygin" and fm.poles_np
+    for text, fn in (fm.poles_np if poles else ()):
+        if fn(*y0, *p) == 0:
             raise ModelError(f"the Chaplygin form (1.4) has a pole at the initial state "
-                             f"({ev.text} = 0); use formulation='multiplier'")
-    sol = solve(fm.rhs, fm.jac, t_span, y0, p, method, rtol, atol, events=events,
-                dense=dense, t_eval=t_eval, what=f"{system.name}, time model")
-    if sol.status == 1:
-        hit = next(i for i, te in enumerate(sol.t_events) if len(te))
-        raise ModelError(
-            f"the Chaplygin form (1.4) of the {system.name} reaches a pole, "
-            f"{events[hit].text} = 0, at t = {sol.t_events[hit][0]:.10g}: the constraints "
-            "solved for the dependent velocities are singular there; use "
-            "formulation='multiplier' (the default 'auto' does), which is regular")
+                             f"({text} = 0); use formulation='multiplier'")
+    what = f"{system.name}, time model"
+    try:
+        sol = solve(fm.rhs, fm.jac, t_span, y0, p, method, rtol, atol,
+                    dense=dense or bool(poles), t_eval=t_eval, what=what)
+    except ModelError as err:
+        if poles and getattr(err, "sol", None) is not None:
+            hit = _first_pole(fm, err.sol, p)
+            if hit:
+                raise _pole_error(system, hit[0], hit[1]) from None
+        raise
+    if poles:
+        hit = _first_pole(fm, sol, p)
+        if hit:
+            raise _pole_error(system, hit[0], hit[1])
     return _trajectory(system, fm, sol, p, method, formulation, dense)
 
 

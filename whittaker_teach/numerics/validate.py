@@ -18,7 +18,8 @@ import numbers
 from ..errors import ModelError, ModelTypeError
 
 __all__ = ["ROUNDOFF", "SCIPY_METHODS", "FIXED_STEP_METHODS", "coordinate_of", "initial_values",
-           "parameter_values", "check_method", "check_tolerances", "check_span", "real"]
+           "parameter_values", "check_method", "check_tolerances", "check_span", "check_t_eval",
+           "real", "MAX_T_EVAL"]
 
 #: A radicand within ROUNDOFF * (its scale) below zero is round-off of zero: it is
 #: clipped to 0 (a turning point); further below, the state is off the energy surface.
@@ -158,3 +159,31 @@ def check_span(span, what):
     if a == b:
         raise ModelError(f"{what} = ({a}, {b}) is empty")
     return a, b
+
+
+#: The most output points a run keeps (``t_eval``); a longer list is refused.
+MAX_T_EVAL = 10**7
+
+
+def check_t_eval(t_eval, span):
+    """``t_eval`` as a sorted float array inside ``span`` (None stays None)."""
+    if t_eval is None:
+        return None
+    import numpy as np
+    try:
+        t = np.asarray(t_eval, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise ModelTypeError("t_eval must be a sequence of times") from None
+    if not 0 < t.size <= MAX_T_EVAL:
+        raise ModelError(f"t_eval has {t.size} points: give between 1 and {MAX_T_EVAL}")
+    if not np.all(np.isfinite(t)):
+        raise ModelError("t_eval contains a non-finite time")
+    a, b = span
+    lo, hi = min(a, b), max(a, b)
+    if t.min() < lo or t.max() > hi:
+        raise ModelError(f"t_eval must lie within t_span = ({a}, {b})")
+    d = np.diff(t)
+    if not (np.all(d > 0) if b > a else np.all(d < 0)):
+        raise ModelError("t_eval must be strictly increasing (decreasing for a backward "
+                         "span), without repeated times")
+    return t

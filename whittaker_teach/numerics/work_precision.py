@@ -1,32 +1,55 @@
 """Speed against error: a work-precision study of the full, reduced and exact models.
 
-``python -m whittaker_teach bench numerics [--quick] [--json FILE] [--plot FILE] [--quiet]``
+``python -m whittaker_teach bench numerics [--quick] [--json FILE] [--csv FILE]
+[--plot FILE] [--quiet]``
 
 The sledge (m = J = k = C = 1, so omega = 1) at two amplitudes, a small one
-and one near pi/2, over 20 periods from theta = a cos(phi), phi = 0.3.  For
-each model and each method and tolerance: the largest error against the exact
-solution, over the integrator's own steps, in theta, x and y and in the energy
-(relative), the median wall time of several runs, and the number of
-right-hand-side evaluations.
+and one near pi/2, over 10 periods from theta = a cos(phi), phi = 0.3.
 
-* ``full``: the Chaplygin equations (1.4) and the constraint, in t;
+**The run set is fixed.**  Every (model, method) runs down a ladder of
+tolerances ``rtol`` = 1e-3, 1e-5, 1e-7, 1e-9, 1e-10, ..., 1e-13 and 2.3e-14
+(the smallest the package accepts), with ``atol`` = :data:`ATOL` (tiny: the error control is
+relative in every component).  A (model, method) stops going tighter after a
+run that needed more than :data:`NFEV_BUDGET` right-hand-side evaluations: a
+budget in evaluations, the same on every machine, never in seconds.
+
+**The error** of a run is measured at its own steps against the exact
+solution, per component and relative to the component's scale: theta against
+the amplitude a, x and y against their largest exact values over the run, t
+(recovered by the reduced model) against the length of the run.  ``error`` is
+the largest of the four.
+
+**The cost** is the number of right-hand-side evaluations (machine
+independent) and the median wall time of :data:`REPEAT` runs, the repeats
+interleaved: the whole run set is timed once, then again, and so on, so that
+a burst of load on the machine spreads over all runs instead of hitting one.
+
+Models:
+
+* ``full``: the default formulation (``"auto"``: the multiplier form for the
+  sledge, regular at cos(theta) = 0), in t;
+* ``full (1.4)``: the paper's Chaplygin form (1.4), a labelled alternative;
 * ``reduced``: the generalized Whittaker equation (1.26) in x, with t(x) and
-  y(x) by quadrature alongside (its energy is exact by construction);
+  y(x) by quadrature alongside;
 * ``DLA``: the fixed-step discrete Lagrange-d'Alembert integrator (setting:
   steps per period);
-* ``exact``: the closed form, evaluated on 1000 points.
+* ``numpy+scipy``: the same equations as ``full``, hand-written with NumPy and
+  passed to ``scipy.integrate.solve_ivp`` (the yardstick for the package's
+  overhead);
+* ``exact``: the closed form, evaluated on 1000 points: the cost limit.
 
-Every right-hand side is built (code generation) before the clock starts.
-``--quick`` runs a smaller study (5 periods, three tolerances, one run each).
+Every right-hand side is generated before the clock starts.
 
->>> res = study(quick=True, progress=False, amplitudes=(0.3,), methods=("DOP853",),
-...             rtols=(1e-6,), dla_steps=(), periods=1)
+>>> res = study(quick=True, amplitudes=(0.3,), methods=("DOP853",), rtols=(1e-6,),
+...             dla_steps=(), periods=1, repeat=1, alternatives=False)
 >>> sorted({r["model"] for r in res["runs"]})
-['exact', 'full', 'reduced']
+['exact', 'full', 'numpy+scipy', 'reduced']
 """
 
 from __future__ import annotations
 
+import csv
+import io
 import json
 import math
 import statistics
@@ -37,51 +60,157 @@ import numpy as np
 
 from ..errors import ModelError
 
-__all__ = ["study", "cheapest", "table", "summary", "plot", "main", "AMPLITUDES", "METHODS",
-           "RTOLS", "TARGETS"]
+__all__ = ["study", "cheapest", "floors", "table", "summary", "summary_rows", "plot", "main",
+           "to_csv", "handwritten_full", "AMPLITUDES", "METHODS", "RTOLS", "TARGETS", "ATOL",
+           "NFEV_BUDGET", "MODELS"]
 
 AMPLITUDES = (0.3, 1.5)
 METHODS = ("RK45", "DOP853", "Radau", "LSODA")
-RTOLS = tuple(10.0 ** -k for k in range(3, 14))
+#: the hand-written yardstick and the alternative formulation run these only (the
+#: cheapest methods of the full model)
+SHORT_METHODS = ("DOP853", "LSODA")
+RTOLS = (1e-3, 1e-5, 1e-7, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 2.3e-14)
+#: atol for every run: tiny, so that the error control is relative in every component
+ATOL = 1e-20
 DLA_STEPS = (16, 32, 64, 128, 256, 512)
 TARGETS = (1e-6, 1e-9, 1e-12)
 PARAMS = {"m": 1.0, "J": 1.0, "k": 1.0}
 PHI, C = 0.3, 1.0
-#: A (model, method) stops going to tighter tolerances after a run this long (seconds).
-BUDGET = 20.0
+#: A (model, method) stops going to tighter tolerances after a run with more evaluations.
+NFEV_BUDGET = 30_000
+REPEAT = 3
+PERIODS = 10
+MODELS = ("full", "full (1.4)", "reduced", "DLA", "numpy+scipy", "exact")
 
-QUICK = {"periods": 5, "rtols": (1e-4, 1e-7, 1e-10), "dla_steps": (32, 128), "repeat": 1}
-
-
-def _errors(ex, t, q):
-    e = ex(np.asarray(t))
-    return {f"err_{k}": float(np.max(np.abs(np.asarray(q[k]) - e[k]))) for k in
-            ("theta", "x", "y")}
-
-
-def _timed(fn, repeat):
-    """(result of the first run, median seconds); a run over 2 s is not repeated."""
-    t0 = time.perf_counter()
-    out = fn()
-    secs = [time.perf_counter() - t0]
-    if secs[0] < 2.0:
-        for _ in range(repeat - 1):
-            t0 = time.perf_counter()
-            fn()
-            secs.append(time.perf_counter() - t0)
-    return out, statistics.median(secs)
+#: ``--quick``: 5 periods, four tolerances, no Radau (the slowest), 3 interleaved repeats
+QUICK = {"periods": 5, "rtols": (1e-4, 1e-7, 1e-10, 1e-13), "dla_steps": (32, 128),
+         "repeat": 3, "methods": ("RK45", "DOP853", "LSODA")}
 
 
-def _record(amplitude, model, method, setting, errs, energy, seconds, nfev, njev, points):
-    r = {"amplitude": amplitude, "model": model, "method": method, "setting": setting,
-         **errs, "err_energy": energy, "seconds": seconds, "nfev": int(nfev),
-         "njev": int(njev), "points": int(points)}
-    r["error"] = max(errs.values())
-    return r
+# ----------------------------------------------------------------- the errors
+def _t_of_x(ex, x, t_guess):
+    """The exact time at which the sledge is at x (x monotone: a < pi/2), by Newton."""
+    t = np.array(t_guess, dtype=float)
+    for _ in range(6):
+        e = ex(t)
+        t = t - (e["x"] - x) / e["xdot"]
+    return t
+
+
+def _errors(ex, T, t, q, x_scale, y_scale, reduced=False):
+    """Per-component relative errors at the run's points."""
+    t = np.asarray(t)
+    e = ex(t)
+    out = {"err_theta": float(np.max(np.abs(np.asarray(q["theta"]) - e["theta"]))) / ex.a,
+           "err_x": float(np.max(np.abs(np.asarray(q["x"]) - e["x"]))) / x_scale,
+           "err_y": float(np.max(np.abs(np.asarray(q["y"]) - e["y"]))) / y_scale,
+           "err_t": 0.0}
+    if reduced:
+        tx = _t_of_x(ex, np.asarray(q["x"]), t)
+        out["err_t"] = float(np.max(np.abs(t - tx))) / T
+    return out
+
+
+def _scales(ex, T):
+    g = ex(np.linspace(0, T, 4001))
+    return float(np.max(np.abs(g["x"]))), float(np.max(np.abs(g["y"])))
+
+
+# ----------------------------------------------------------------- the yardstick
+def handwritten_full(k=1.0, J=1.0):
+    """The sledge's multiplier form written by hand with NumPy, for ``solve_ivp``:
+    state (x, theta, y, xdot, thetadot, ydot); the multiplier of the cleared
+    constraint ydot cos(theta) - xdot sin(theta) = 0 is lambda/m = thetadot
+    (xdot cos(theta) + ydot sin(theta)).
+
+    >>> f = handwritten_full()
+    >>> [round(float(v), 4) for v in f(0.0, np.array([0, 0.5, 0, 1, 0.2, 0.5]))][3:]
+    [-0.1071, -0.5, 0.1961]
+    """
+    w2 = k * k / J
+
+    def f(t, u):
+        x, th, y, xd, thd, yd = u
+        s, c = np.sin(th), np.cos(th)
+        lam = thd * (xd * c + yd * s)
+        return np.array([xd, thd, yd, -lam * s, -w2 * th, lam * c])
+    return f
+
+
+# ----------------------------------------------------------------- one run
+class _Case:
+    """One amplitude: the exact motion, the starting states, the scales."""
+
+    def __init__(self, S, red, a, periods):
+        import whittaker_teach as wt
+        self.S, self.red, self.a = S, red, a
+        self.ex = wt.examples.sledge_exact(PARAMS, a=a, phi=PHI, C=C)
+        self.T = periods * self.ex.period
+        self.q0, self.qd0 = self.ex.initial()
+        self.rq0, self.qp0, self.h = self.ex.reduced_initial()
+        self.x_end = self.ex(self.T)["x"]
+        self.x_scale, self.y_scale = _scales(self.ex, self.T)
+        s = self.ex(0.0)
+        self.u0 = np.array([s["x"], s["theta"], s["y"], s["xdot"], s["thetadot"], s["ydot"]])
+        self.hand = handwritten_full()
+
+    def runner(self, model, method, setting):
+        """A function doing the run, returning (t, q dict, nfev, njev, energy error)."""
+        S, P = self.S, PARAMS
+        if model in ("full", "full (1.4)"):
+            form = "auto" if model == "full" else "chaplygin"
+
+            def go():
+                tr = S.simulate(self.q0, self.qd0, (0, self.T), P, method=method,
+                                rtol=setting, atol=ATOL, dense=False, formulation=form)
+                return tr.t, tr.q, tr.nfev, tr.njev, tr.energy_error
+            S.simulate(self.q0, self.qd0, (0, self.T / 50), P, method=method, formulation=form)
+            return go
+        if model == "reduced":
+            def go():
+                p = self.red.simulate(self.rq0, self.qp0, self.h, (self.rq0["x"], self.x_end),
+                                      P, method=method, rtol=setting, atol=ATOL, dense=False)
+                return p.t, p.q, p.nfev, p.njev, None
+            self.red.simulate(self.rq0, self.qp0, self.h, (self.rq0["x"], self.rq0["x"] + 0.1),
+                              P, method=method)
+            return go
+        if model == "DLA":
+            dt = self.ex.period / setting
+
+            def go():
+                tr = S.simulate(self.q0, self.qd0, (0, self.T), P, method="DLA", dt=dt,
+                                dense=False)
+                return tr.t, tr.q, tr.nfev, tr.njev, tr.energy_error
+            S.simulate(self.q0, self.qd0, (0, dt), P, method="DLA", dt=dt)
+            return go
+        if model == "numpy+scipy":
+            from scipy.integrate import solve_ivp
+
+            def go():
+                sol = solve_ivp(self.hand, (0, self.T), self.u0, method=method, rtol=setting,
+                                atol=ATOL)
+                if sol.status != 0:
+                    raise ModelError(f"solve_ivp failed: {sol.message}")
+                q = {"x": sol.y[0], "theta": sol.y[1], "y": sol.y[2]}
+                return sol.t, q, sol.nfev, sol.njev, None
+            return go
+        grid = np.linspace(0, self.T, 1000)
+
+        def go():
+            g = self.ex(grid)
+            return grid, g, 0, 0, None
+        return go
+
+    def judge(self, model, out):
+        t, q, nfev, njev, dE = out
+        errs = _errors(self.ex, self.T, t, q, self.x_scale, self.y_scale,
+                       reduced=model == "reduced")
+        return {**errs, "err_energy": dE, "nfev": int(nfev), "njev": int(njev),
+                "points": int(len(t)), "error": max(errs.values())}
 
 
 def _exact_error(ex, T, n=4):
-    """The closed form against mpmath quadrature at 30 digits at n instants."""
+    """The closed form against mpmath quadrature at 30 digits at n instants (absolute)."""
     import mpmath as mp
     worst = 0.0
     with mp.workdps(30):
@@ -95,107 +224,95 @@ def _exact_error(ex, T, n=4):
     return worst
 
 
-def exact_cost(ex, T, repeat=7):
-    """(seconds per scalar evaluation, seconds for 1000 points vectorised)."""
-    n = 2000
-    ts = [T * (i + 0.5) / n for i in range(n)]
-
-    def scalar():
-        for t in ts:
-            ex(t)
-    _, s1 = _timed(scalar, repeat)
-    grid = np.linspace(0, T, 1000)
-    _, s2 = _timed(lambda: ex(grid), repeat)
-    return s1 / n, s2
+def exact_errors(rec, abs_error, x_scale, y_scale):
+    """The exact solution's errors: its largest absolute error in x and y against a
+    30-digit mpmath quadrature (:func:`_exact_error`), relative to their scales."""
+    rec["err_x_abs"] = abs_error
+    rec["err_x"], rec["err_y"] = abs_error / x_scale, abs_error / y_scale
+    rec["error"] = max(rec["err_theta"], rec["err_x"], rec["err_y"], rec["err_t"])
 
 
-def _tasks(amplitudes, methods, rtols, dla_steps):
-    tasks = []
+# ----------------------------------------------------------------- the run set
+def _ladder(amplitudes, methods, rtols, dla_steps, alternatives):
+    """[(a, model, method, [settings])]: every (model, method) with its ladder."""
+    out = []
     for a in amplitudes:
-        for model in ("full", "reduced"):
-            for m in methods:
-                tasks += [(a, model, m, r) for r in rtols]
-        tasks += [(a, "DLA", "DLA", n) for n in dla_steps]
-        tasks.append((a, "exact", "closed form", None))
-    return tasks
+        for m in methods:
+            out.append((a, "full", m, list(rtols)))
+        if alternatives:
+            for m in SHORT_METHODS:
+                if m in methods:
+                    out.append((a, "full (1.4)", m, list(rtols)))
+        for m in methods:
+            out.append((a, "reduced", m, list(rtols)))
+        for m in methods:
+            if m in SHORT_METHODS:
+                out.append((a, "numpy+scipy", m, list(rtols)))
+        if dla_steps:
+            out.append((a, "DLA", "DLA", list(dla_steps)))
+        out.append((a, "exact", "closed form", [None]))
+    return out
 
 
-def study(quick=False, progress=True, amplitudes=AMPLITUDES, methods=METHODS, rtols=None,
-          dla_steps=None, periods=None, repeat=None):
-    """Run the study; a dict {"meta": ..., "runs": [record, ...], "exact_cost": ...}."""
+def study(quick=False, progress=True, amplitudes=AMPLITUDES, methods=None, rtols=None,
+          dla_steps=None, periods=None, repeat=None, alternatives=True):
+    """Run the study: {"meta": ..., "runs": [record, ...], "exact_cost": ...}.
+
+    First pass: every run of the fixed set once (errors, evaluations; the
+    evaluation budget cuts a ladder); then ``repeat`` timing passes over the
+    same runs in the same order; each run's ``seconds`` is the median."""
     import whittaker_teach as wt
-    cfg = QUICK if quick else {"periods": 20, "rtols": RTOLS, "dla_steps": DLA_STEPS,
-                               "repeat": 3}
+    cfg = QUICK if quick else {"periods": PERIODS, "rtols": RTOLS, "dla_steps": DLA_STEPS,
+                               "repeat": REPEAT, "methods": METHODS}
+    methods = cfg["methods"] if methods is None else methods
     periods = cfg["periods"] if periods is None else periods
     rtols = cfg["rtols"] if rtols is None else rtols
     dla_steps = cfg["dla_steps"] if dla_steps is None else dla_steps
     repeat = cfg["repeat"] if repeat is None else repeat
     S = wt.examples.sledge()
     red = S.reduce("x", +1)
-    tasks = _tasks(amplitudes, methods, rtols, dla_steps)
-    bar = _progress(len(tasks), progress)
-    runs, over, costs = [], set(), {}
-    for a, model, method, setting in tasks:
-        ex = wt.examples.sledge_exact(PARAMS, a=a, phi=PHI, C=C)
-        T = periods * ex.period
-        bar.set_description(f"a={a:g} {model:7s} {method:6s} {setting if setting else ''}")
-        if (a, model, method) in over:
+    cases = {a: _Case(S, red, a, periods) for a in amplitudes}
+    ladder = _ladder(amplitudes, methods, rtols, dla_steps, alternatives)
+    bar = _progress(sum(len(s) for *_, s in ladder) * (1 + repeat), progress)
+    runs, fns = [], []
+    for a, model, method, settings in ladder:
+        case = cases[a]
+        for setting in settings:
+            bar.set_description(f"a={a:g} {model} {method} {setting or ''}")
+            rec = {"amplitude": a, "model": model, "method": method, "setting": setting}
+            try:
+                fn = case.runner(model, method, setting)
+                rec.update(case.judge(model, fn()))
+            except ModelError as err:   # e.g. a loose run wandering into a turning point
+                rec["failed"] = f"{type(err).__name__}: {err}"
+                runs.append(rec)
+                bar.update(1 + repeat)
+                continue
+            rec["times"] = []
+            runs.append(rec)
+            fns.append((rec, fn))
             bar.update()
-            continue
-        try:
-            rec = _run(S, red, ex, T, a, model, method, setting, repeat)
-        except ModelError as err:           # e.g. a loose run wandering into a turning point
-            runs.append({"amplitude": a, "model": model, "method": method,
-                         "setting": setting, "failed": f"{type(err).__name__}: {err}"})
+            if rec["nfev"] > NFEV_BUDGET:
+                bar.update((1 + repeat) * (len(settings) - settings.index(setting) - 1))
+                break
+    for _ in range(repeat):                 # interleaved: pass after pass over the set
+        for rec, fn in fns:
+            t0 = time.perf_counter()
+            fn()
+            rec["times"].append(time.perf_counter() - t0)
             bar.update()
-            continue
-        if model == "exact":
-            costs[a] = {"scalar": rec.pop("scalar"), "grid1000": rec["seconds"]}
-        runs.append(rec)
-        if rec["seconds"] > BUDGET:
-            over.add((a, model, method))
-        bar.update()
     bar.close()
-    return {"meta": _meta(periods, repeat, amplitudes), "runs": runs,
-            "exact_cost": {str(a): c for a, c in costs.items()}}
-
-
-def _run(S, red, ex, T, a, model, method, setting, repeat):
-    if model == "full":
-        q0, qd0 = ex.initial()
-        S.simulate(q0, qd0, (0, T / 50), PARAMS, method=method, formulation="chaplygin")
-        tr, secs = _timed(lambda: S.simulate(q0, qd0, (0, T), PARAMS, method=method,
-                                             rtol=setting, dense=False,
-                                             formulation="chaplygin"), repeat)
-        dE = float(np.max(np.abs(tr.energy - ex.h)) / ex.h)
-        return _record(a, model, method, setting, _errors(ex, tr.t, tr.q), dE, secs,
-                       tr.nfev, tr.njev, len(tr.t))
-    if model == "reduced":
-        q0, qp0, h = ex.reduced_initial()
-        x_end = ex(T)["x"]
-        red.simulate(q0, qp0, h, (q0["x"], q0["x"] + 0.1), PARAMS, method=method)
-        p, secs = _timed(lambda: red.simulate(q0, qp0, h, (q0["x"], x_end), PARAMS,
-                                              method=method, rtol=setting, dense=False),
-                         repeat)
-        return _record(a, model, method, setting, _errors(ex, p.t, p.q), None, secs,
-                       p.nfev, p.njev, len(p.t))
-    if model == "DLA":
-        q0, qd0 = ex.initial()
-        dt = ex.period / setting
-        S.simulate(q0, qd0, (0, dt), PARAMS, method="DLA", dt=dt)
-        tr, secs = _timed(lambda: S.simulate(q0, qd0, (0, T), PARAMS, method="DLA", dt=dt,
-                                             dense=False), repeat)
-        dE = float(np.max(np.abs(tr.energy - ex.h)) / ex.h)
-        return _record(a, model, method, setting, _errors(ex, tr.t, tr.q), dE, secs,
-                       tr.nfev, tr.njev, len(tr.t))
-    err = _exact_error(ex, T)
-    per_point, grid = exact_cost(ex, T, max(repeat, 3))
-    g = ex(np.linspace(0, T, 1000))
-    E = 0.5 * (g["xdot"] ** 2 + g["ydot"] ** 2) + 0.5 * g["thetadot"] ** 2 + 0.5 * g["theta"] ** 2
-    rec = _record(a, model, method, None, {"err_theta": 0.0, "err_x": err, "err_y": err},
-                  float(np.max(np.abs(E - ex.h)) / ex.h), grid, 0, 0, 1000)
-    rec["scalar"] = per_point
-    return rec
+    costs = {}
+    for rec in runs:
+        if "failed" in rec:
+            continue
+        rec["seconds"] = statistics.median(rec["times"]) if rec["times"] else float("nan")
+        if rec["model"] == "exact":
+            case = cases[rec["amplitude"]]
+            exact_errors(rec, _exact_error(case.ex, case.T), case.x_scale, case.y_scale)
+            costs[str(rec["amplitude"])] = {"grid1000": rec["seconds"]}
+    return {"meta": _meta(periods, repeat, amplitudes, rtols), "runs": runs,
+            "exact_cost": costs}
 
 
 class _NoBar:
@@ -209,9 +326,24 @@ class _NoBar:
         pass
 
 
+class _LogBar(_NoBar):
+    """Progress as a line every 10%, for a log file."""
+
+    def __init__(self, total):
+        self.total, self.n, self.next = total, 0, 0.1
+
+    def update(self, k=1):
+        self.n += k
+        if self.n >= self.next * self.total:
+            print(f"  {self.n}/{self.total} runs", file=sys.stderr, flush=True)
+            self.next += 0.1
+
+
 def _progress(total, enabled):
-    if not enabled or not sys.stderr.isatty():
+    if not enabled:
         return _NoBar()
+    if not sys.stderr.isatty():
+        return _LogBar(total)
     try:
         from tqdm import tqdm
     except ImportError:
@@ -219,14 +351,17 @@ def _progress(total, enabled):
     return tqdm(total=total, unit="run", file=sys.stderr, leave=False)
 
 
-def _meta(periods, repeat, amplitudes):
+def _meta(periods, repeat, amplitudes, rtols):
     import platform
 
     import scipy
     return {"system": "sledge", "params": PARAMS, "C": C, "phi": PHI, "periods": periods,
-            "amplitudes": list(amplitudes), "repeat": repeat, "python": platform.python_version(),
-            "numpy": np.__version__, "scipy": scipy.__version__, "machine": platform.machine(),
-            "error": "max over the steps of |theta - theta_exact|, |x - x_exact|, |y - y_exact|"}
+            "amplitudes": list(amplitudes), "repeat": repeat, "rtols": list(rtols),
+            "atol": ATOL, "nfev_budget": NFEV_BUDGET,
+            "python": platform.python_version(), "numpy": np.__version__,
+            "scipy": scipy.__version__, "machine": platform.machine(),
+            "error": "max over the run's points of |theta - exact|/a, |x - exact|/max|x|, "
+                     "|y - exact|/max|y|, |t - exact|/T"}
 
 
 # ----------------------------------------------------------------- reading the results
@@ -235,124 +370,199 @@ def _done(results):
     return [r for r in results["runs"] if "failed" not in r]
 
 
-def cheapest(results, targets=TARGETS):
-    """{amplitude: {target: {model: record or None, "ratio": reduced/full seconds}}}."""
+def run_set(results):
+    """The identity of every run, in order: (amplitude, model, method, setting)."""
+    return [(r["amplitude"], r["model"], r["method"], r["setting"]) for r in results["runs"]]
+
+
+def floors(results):
+    """{amplitude: {model: the run with the smallest error}}."""
     out = {}
+    for a in results["meta"]["amplitudes"]:
+        out[a] = {}
+        for model in MODELS:
+            rs = [r for r in _done(results) if r["amplitude"] == a and r["model"] == model]
+            out[a][model] = min(rs, key=lambda r: (r["error"], r["nfev"])) if rs else None
+    return out
+
+
+def cheapest(results, targets=TARGETS, by="nfev"):
+    """{amplitude: {target: {model: record or None}}}: the cheapest run of each model whose
+    error is within the target, by evaluations (``by="nfev"``, the same on every
+    machine; ties go to the shorter time) or by ``"seconds"``.  The target
+    ``"floor"`` holds each model's most accurate run."""
+    out = {}
+    fl = floors(results)
+    key = ((lambda r: (r["nfev"], r["seconds"])) if by == "nfev"
+           else (lambda r: (r["seconds"], r["nfev"])))
     for a in results["meta"]["amplitudes"]:
         per = {}
         for tgt in targets:
             row = {}
-            for model in ("full", "reduced", "DLA", "exact"):
+            for model in MODELS:
                 ok = [r for r in _done(results) if r["amplitude"] == a
                       and r["model"] == model and r["error"] <= tgt]
-                row[model] = min(ok, key=lambda r: r["seconds"]) if ok else None
-            f, r = row["full"], row["reduced"]
-            row["ratio"] = r["seconds"] / f["seconds"] if f and r else None
-            row["nfev_ratio"] = r["nfev"] / f["nfev"] if f and r else None
+                row[model] = min(ok, key=key) if ok else None
             per[tgt] = row
+        per["floor"] = dict(fl[a])
         out[a] = per
     return out
 
 
-def _fmt_e(v):
-    return "   exact " if v is None else f"{v:9.1e}"
+def picks(results, targets=TARGETS):
+    """The cheapest-by-evaluations picks as plain tuples (for comparing two runs)."""
+    best = cheapest(results, targets)
+    return {(a, str(t), m): (r["method"], r["setting"]) if r else None
+            for a, per in best.items() for t, row in per.items() for m, r in row.items()}
+
+
+def _setting(r):
+    s = r["setting"]
+    if s is None:
+        return ""
+    return f"{s}/period" if r["model"] == "DLA" else f"{s:.1e}" if s < 1e-13 else f"{s:.0e}"
 
 
 def table(results):
-    """Every run as a text table, one block per amplitude."""
+    """Every run as a text table (80 columns), one block per amplitude."""
     lines = []
-    head = (f"{'model':8s} {'method':11s} {'setting':>8s} {'err theta':>9s} {'err x':>9s} "
-            f"{'err y':>9s} {'err E':>9s} {'time ms':>9s} {'nfev':>8s}")
+    head = (f"{'model':11s} {'method':7s} {'setting':>8s} {'theta':>7s} {'x':>7s} {'y':>7s} "
+            f"{'t':>7s} {'nfev':>7s} {'ms':>8s}")
     for a in results["meta"]["amplitudes"]:
-        lines += [f"amplitude a = {a:g}", head]
+        lines += [f"amplitude a = {a:g} (errors relative to each component's scale)", head]
         for r in results["runs"]:
             if r["amplitude"] != a:
                 continue
-            s = r["setting"]
-            setting = "" if s is None else (f"{s:.0e}" if r["model"] != "DLA" else f"{s}/T")
+            meth = r["method"] if r["model"] != "exact" else "-"
             if "failed" in r:
-                lines.append(f"{r['model']:8s} {r['method']:11s} {setting:>8s}  failed: "
-                             f"{r['failed'][:60]}")
+                lines.append(f"{r['model']:11s} {meth:7s} {_setting(r):>8s}  failed: "
+                             f"{r['failed'][:40]}")
                 continue
-            lines.append(f"{r['model']:8s} {r['method']:11s} {setting:>8s} "
-                         f"{r['err_theta']:9.1e} {r['err_x']:9.1e} {r['err_y']:9.1e} "
-                         f"{_fmt_e(r['err_energy'])} {1e3 * r['seconds']:9.2f} {r['nfev']:8d}")
+            lines.append(f"{r['model']:11s} {meth:7s} {_setting(r):>8s} "
+                         f"{r['err_theta']:7.0e} {r['err_x']:7.0e} {r['err_y']:7.0e} "
+                         f"{r['err_t']:7.0e} {r['nfev']:7d} {1e3 * r['seconds']:8.2f}")
         lines.append("")
     return "\n".join(lines)
 
 
-def _how(r):
-    if r is None:
-        return "not reached"
-    if r["model"] == "exact":
-        return f"closed form, {1e3 * r['seconds']:.2f} ms / 1000 points"
-    s = f"rtol {r['setting']:.0e}" if r["model"] != "DLA" else f"{r['setting']} steps/period"
-    return f"{r['method']} {s}: {1e3 * r['seconds']:.2f} ms, nfev {r['nfev']}"
+def summary_rows(results, targets=TARGETS):
+    """The summary as rows: (a, target, model, method, setting, error, nfev, ms)."""
+    best = cheapest(results, targets)
+    rows = []
+    for a, per in best.items():
+        for tgt, row in per.items():
+            for model in MODELS:
+                r = row[model]
+                rows.append((a, tgt, model, r["method"] if r else None,
+                             _setting(r) if r else None, r["error"] if r else None,
+                             r["nfev"] if r else None, 1e3 * r["seconds"] if r else None))
+    return rows
+
+
+def _ratio(row):
+    """package / hand-written: the cheapest full-model run (by time) of each."""
+    pk = [r for m, r in row.items() if m in ("full", "full (1.4)", "reduced") and r]
+    hw = row.get("numpy+scipy")
+    if not pk or not hw:
+        return None
+    return min(r["seconds"] for r in pk) / hw["seconds"]
 
 
 def summary(results, targets=TARGETS):
-    """The cheapest way to each target error with each model, and reduced / full."""
+    """The cheapest run of every model for each target and the floor (80 columns)."""
     best = cheapest(results, targets)
+    by_time = cheapest(results, targets, by="seconds")
     lines = []
     for a, per in best.items():
-        lines.append(f"amplitude a = {a:g}: cheapest run with error <= target")
+        lines.append(f"a = {a:g}: cheapest run (by evaluations) with error <= target")
         for tgt, row in per.items():
-            lines.append(f"  error {tgt:.0e}")
-            for model in ("full", "reduced", "DLA", "exact"):
-                lines.append(f"    {model:8s} {_how(row[model])}")
-            if row["ratio"] is not None:
-                lines.append(f"    reduced / full: time {row['ratio']:.2f}, nfev "
-                             f"{row['nfev_ratio']:.2f}")
-        c = results["exact_cost"].get(str(a))
-        if c:
-            lines.append(f"  one exact evaluation: {1e6 * c['scalar']:.2f} us (scalar), "
-                         f"{1e3 * c['grid1000']:.3f} ms for 1000 points")
+            name = "floor (smallest error reached)" if tgt == "floor" else f"error {tgt:.0e}"
+            lines.append(f"  {name}")
+            for model in MODELS:
+                r = row[model]
+                if r is None:
+                    lines.append(f"    {model:11s} not reached")
+                    continue
+                meth = "" if model == "exact" else f"{r['method']} {_setting(r)}"
+                lines.append(f"    {model:11s} {meth:18s} err {r['error']:7.1e}  nfev "
+                             f"{r['nfev']:6d}  {1e3 * r['seconds']:8.2f} ms")
+            ratio = _ratio(by_time[a][tgt]) if tgt != "floor" else None
+            if ratio is not None:
+                lines.append(f"    package / numpy+scipy (fastest of each): {ratio:.2f}")
         lines.append("")
     return "\n".join(lines)
 
 
+def to_csv(results):
+    """Every run as CSV text (one row per run, the failed ones included)."""
+    cols = ["amplitude", "model", "method", "setting", "error", "err_theta", "err_x", "err_y",
+            "err_t", "err_energy", "nfev", "njev", "points", "seconds", "failed"]
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(cols)
+    for r in results["runs"]:
+        w.writerow(["" if r.get(c) is None else r.get(c) for c in cols])
+    return buf.getvalue()
+
+
 # ----------------------------------------------------------------- the figure
-STYLE = {"full": ("-", "o"), "reduced": ("--", "s"), "DLA": (":", "^"), "exact": ("", "*")}
+STYLE = {"full": ("-", "o"), "full (1.4)": ((0, (1, 1)), "D"), "reduced": ("--", "s"),
+         "DLA": (":", "^"), "numpy+scipy": ((0, (5, 2, 1, 2)), "x"), "exact": ("", "*")}
+LABEL = {"full": "full model (default form), in t", "full (1.4)": "full model, paper's (1.4)",
+         "reduced": "reduced (1.26), in x", "DLA": "DLA (fixed step)",
+         "numpy+scipy": "hand-written numpy + scipy", "exact": "exact (1000 points): the limit"}
 
 
 def plot(results, path=None, targets=TARGETS):
-    """Log-log error against wall time, one panel per amplitude.  Saved (deterministic SVG
-    or PNG) if ``path`` is given; returns the figure."""
+    """Log-log relative error against the median wall time, one panel per amplitude; the
+    cheapest run of each model for each target and the floor is ringed.  Saved
+    (deterministic SVG) if ``path`` is given; returns the figure."""
     import matplotlib
     if path is not None and "matplotlib.pyplot" not in sys.modules:
         matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
     matplotlib.rcParams["svg.hashsalt"] = "whittaker-teach"
     amps = results["meta"]["amplitudes"]
-    fig, axes = plt.subplots(1, len(amps), figsize=(5.2 * len(amps), 4.4), squeeze=False,
-                             sharey=True)
-    colors = {m: f"C{i}" for i, m in enumerate(METHODS)}
-    for ax, a in zip(axes[0], amps):
-        for r_model in ("full", "reduced", "DLA", "exact"):
-            for m in sorted({r["method"] for r in _done(results) if r["model"] == r_model}):
-                rs = [r for r in _done(results) if r["amplitude"] == a
-                      and r["model"] == r_model and r["method"] == m]
-                if not rs:
-                    continue
-                ls, mk = STYLE[r_model]
-                ax.loglog([r["seconds"] for r in rs], [max(r["error"], 1e-17) for r in rs],
-                          ls=ls, marker=mk, color=colors.get(m, "k"),
-                          ms=5 if r_model != "exact" else 12)
-        for tgt in targets:
-            ax.axhline(tgt, color="0.55", lw=0.8, ls=(0, (4, 4)), zorder=1)
-        ax.set_title(f"a = {a:g} ({results['meta']['periods']} periods)")
-        ax.set_xlabel("wall time per run [s] (median)")
-        ax.grid(True, which="major", color="0.92")
-    axes[0][0].set_ylabel("max error in theta, x, y")
-    from matplotlib.lines import Line2D
-    handles = [Line2D([], [], color=colors[m], lw=2, label=m) for m in METHODS]
-    handles += [Line2D([], [], color="0.3", ls=STYLE[k][0] or "none", marker=STYLE[k][1],
-                       ms=5 if k != "exact" else 10,
-                       label={"full": "full model (1.4), in t", "reduced": "reduced (1.26), in x",
-                              "DLA": "DLA (fixed step)", "exact": "exact (1000 points)"}[k])
-                for k in STYLE]
-    axes[0][0].legend(handles=handles, fontsize=7.5, loc="center left", framealpha=0.95)
-    fig.tight_layout()
+    best = cheapest(results, targets)
+    # 7.5 in wide with 10 pt text: at least 9 pt when shown at the page's width (~7 in)
+    with plt.rc_context({"font.size": 10}):
+        fig, axes = plt.subplots(1, len(amps), figsize=(3.75 * len(amps), 5.6), squeeze=False,
+                                 sharey=True)
+        colors = {m: f"C{i}" for i, m in enumerate(METHODS)}
+        for ax, a in zip(axes[0], amps):
+            done = [r for r in _done(results) if r["amplitude"] == a]
+            for model in MODELS:
+                for m in sorted({r["method"] for r in done if r["model"] == model}):
+                    rs = [r for r in done if r["model"] == model and r["method"] == m]
+                    ls, mk = STYLE[model]
+                    ax.loglog([1e3 * r["seconds"] for r in rs],
+                              [max(r["error"], 1e-17) for r in rs], ls=ls, marker=mk,
+                              color=colors.get(m, "k"), ms=5 if model != "exact" else 13,
+                              lw=1.2, alpha=0.85)
+            ringed = {id(r): r for row in best[a].values() for mod, r in row.items()
+                      if r is not None and mod != "exact"}
+            ax.plot([1e3 * r["seconds"] for r in ringed.values()],
+                    [max(r["error"], 1e-17) for r in ringed.values()], "o", ms=12, mfc="none",
+                    mec="k", mew=1.2, zorder=5)
+            ex = [r for r in done if r["model"] == "exact"]
+            if ex:
+                ax.axvline(1e3 * ex[0]["seconds"], color="k", lw=0.8, ls="--", zorder=1)
+            for tgt in targets:
+                ax.axhline(tgt, color="0.45", lw=0.9, ls=(0, (4, 4)), zorder=2)
+            ax.set_ylim(1e-16, None)
+            ax.set_title(f"a = {a:g}, {results['meta']['periods']} periods")
+            ax.set_xlabel("wall time per run [ms]")
+            ax.grid(True, which="major", color="0.92", zorder=0)
+            ax.set_axisbelow(True)
+        axes[0][0].set_ylabel("largest relative error (θ, x, y, t)")
+        handles = [Line2D([], [], color=colors[m], lw=2, label=m) for m in METHODS]
+        handles += [Line2D([], [], color="0.3", ls=STYLE[k][0] or "none", marker=STYLE[k][1],
+                           ms=5 if k != "exact" else 10, label=LABEL[k]) for k in MODELS]
+        handles.append(Line2D([], [], ls="none", marker="o", ms=11, mfc="none", mec="k",
+                              label="cheapest run per target (by evaluations)"))
+        fig.legend(handles=handles, loc="lower center", ncol=2, fontsize=10, frameon=False)
+        fig.tight_layout(rect=(0, 0.27, 1, 1))
     if path is not None:
         fig.savefig(path, metadata={"Date": None} if str(path).endswith(".svg") else None)
     return fig
@@ -362,9 +572,11 @@ def plot(results, path=None, targets=TARGETS):
 def main(args):
     """``python -m whittaker_teach bench numerics``."""
     res = study(quick=args.quick, progress=not args.quiet)
-    print(f"work-precision study: sledge, {res['meta']['periods']} periods, phi = {PHI}, "
-          f"C = {C}, m = J = k = 1; error = {res['meta']['error']}; times are medians of "
-          f"{res['meta']['repeat']} run(s)\n")
+    m = res["meta"]
+    print(f"work-precision study: sledge, {m['periods']} periods, phi = {PHI}, C = {C},\n"
+          f"m = J = k = 1; atol = {ATOL:g}; evaluation budget {NFEV_BUDGET} per run;\n"
+          f"times are medians of {m['repeat']} interleaved runs\n"
+          f"error = {m['error']}\n")
     print(table(res))
     print(summary(res))
     if args.json:
@@ -372,6 +584,10 @@ def main(args):
             json.dump(res, f, indent=1, sort_keys=True)
             f.write("\n")
         print(f"wrote {args.json}")
+    if getattr(args, "csv", None):
+        with open(args.csv, "w") as f:
+            f.write(to_csv(res))
+        print(f"wrote {args.csv}")
     if args.plot:
         plot(res, args.plot)
         print(f"wrote {args.plot}")
