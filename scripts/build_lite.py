@@ -235,17 +235,32 @@ def build(out: Path, work: Path, pyodide_version: str = fetch_lite.PYODIDE_VERSI
 
     if out.exists():
         shutil.rmtree(out)
+    # a fresh build every time: doit's task database would skip steps (such as
+    # merging jupyter-lite.json) whose inputs look unchanged
+    for db in list(work.glob(".jupyterlite.doit.db*")) + list(src.glob(".jupyterlite.doit.db*")):
+        db.unlink()
+    shutil.rmtree(work / "cache", ignore_errors=True)
     env = dict(os.environ, JUPYTERLITE_NO_LIBARCHIVE="1")
     env.pop("JUPYTERLITE_PYODIDE_URL", None)
     fetch_lite._run([sys.executable, "-m", "jupyterlite_core", "build",
                      "--lite-dir", src, "--output-dir", out,
                      "--apps", "lab", "--no-sourcemaps", "--no-unused-shared-packages"],
                     cwd=work, env=env)
-    shutil.rmtree(out / ".jupyterlite.doit.db", ignore_errors=True)
     for stray in out.glob(".jupyterlite.doit.db*"):
         stray.unlink()
+    check_config(out)
     print(f"build_lite: {len(docs)} notebooks, {len(lock['packages'])} wheels → {out}")
     return docs
+
+
+def check_config(out: Path) -> None:
+    """Fail the build if the kernel is not set to the local Pyodide without PyPI."""
+    config = json.loads((out / "jupyter-lite.json").read_text())["jupyter-config-data"]
+    kernel = config.get("litePluginSettings", {}).get(KERNEL_PLUGIN, {})
+    if kernel.get("pyodideUrl") != "./static/pyodide/pyodide.mjs" \
+            or kernel.get("disablePyPIFallback") is not True:
+        sys.exit(f"build_lite: {out}/jupyter-lite.json does not point the kernel at the "
+                 f"local Pyodide with the PyPI fallback off: {kernel}")
 
 
 def _kernel_labextensions() -> str:
