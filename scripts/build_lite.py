@@ -123,8 +123,16 @@ def build_package_wheel(dest: Path) -> Path:
             shutil.copy2(ROOT / name, src / name)
         shutil.copytree(ROOT / "whittaker_teach", src / "whittaker_teach",
                         ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
+        # the installed setuptools if there is one (no download), else pip's
+        # isolated build environment (setuptools from PyPI)
+        try:
+            import setuptools  # noqa: F401
+            import wheel  # noqa: F401
+            isolation = ["--no-build-isolation"]
+        except ImportError:
+            isolation = []
         fetch_lite._run([sys.executable, "-m", "pip", "wheel", "-q", "--no-deps",
-                         "--no-build-isolation", "-w", dest, src])
+                         *isolation, "-w", dest, src])
     (whl,) = dest.glob("whittaker_teach-*.whl")
     return whl
 
