@@ -295,7 +295,11 @@ def test_chapter_4_runs_in_the_browser(lite):
     cell, _ = _code_cell(lab, 'red.steps.only("1.26"')
     out = cell.locator(".jp-OutputArea")
     assert "(1.26)" in out.inner_text() and "generalized Whittaker equations" in out.inner_text()
-    assert out.locator(".jp-RenderedLatex mjx-container").count() >= 1
+    # JupyterLab typesets lazily, when an output comes into view
+    latex = out.locator(".jp-RenderedLatex")
+    assert latex.count() >= 1
+    latex.last.scroll_into_view_if_needed()
+    latex.last.locator("mjx-container").first.wait_for(timeout=60_000)
     assert out.locator("mjx-merror").count() == 0
     assert lite.outside == [], lite.outside
 

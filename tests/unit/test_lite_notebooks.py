@@ -114,3 +114,23 @@ def test_every_book_notebook_converts_without_myst_left():
                 src = cell["source"]
                 for bad in ("{exercise}", "{solution}", "{doc}`", "{ref}`", "{cite:", ":label:"):
                     assert bad not in src, (d, bad)
+
+
+def test_show_renders_maths_in_the_pyodide_kernel(monkeypatch):
+    """In JupyterLite the shell is pyodide_kernel's: show() displays LaTeX there too."""
+    import IPython
+    import IPython.display
+
+    from whittaker_teach import render
+
+    shown = []
+    Interpreter = type("Interpreter", (), {"__module__": "pyodide_kernel.interpreter"})
+    Terminal = type("TerminalInteractiveShell", (), {"__module__": "IPython.terminal"})
+    monkeypatch.setattr(IPython.display, "display", lambda obj: shown.append(type(obj).__name__))
+    for shell, in_notebook in ((Interpreter(), True), (Terminal(), False), (None, False)):
+        monkeypatch.setattr(IPython, "get_ipython", lambda s=shell: s)
+        assert render._in_notebook() is in_notebook
+    monkeypatch.setattr(IPython, "get_ipython", lambda: Interpreter())
+    import whittaker_teach as wt
+    wt.examples.sledge().steps.only("1.1").show()
+    assert shown == ["Markdown", "Markdown", "Math"]
