@@ -92,12 +92,12 @@ def _exercise_note(url: str) -> str:
         '</div>\n')
 
 
-def _add_static(app):
-    app.config.html_static_path.append(str(Path(__file__).parent / "static"))
+def _add_static(app, config):
+    config.html_static_path = [*config.html_static_path, str(Path(__file__).parent / "static")]
 
 
 def setup(app):
-    app.connect("builder-inited", _add_static)
+    app.connect("config-inited", _add_static)
     app.add_css_file("wt_lite_launch.css")
     # after sphinx-book-theme's own buttons (priority 501)
     app.connect("html-page-context", add_button, priority=502)
