@@ -225,6 +225,13 @@ def _notebook(lab):
     return lab.locator(".jp-Notebook:visible").first
 
 
+def wait_notebook(lab, min_code_cells=2):
+    """Wait until the notebook is shown with its code cells' editors."""
+    _notebook(lab).wait_for(timeout=60_000)
+    _notebook(lab).locator(".jp-CodeCell .cm-content").nth(min_code_cells - 1).wait_for(
+        timeout=60_000)
+
+
 def run_all(lab, timeout_s=RUN_ALL_S):
     _notebook(lab).click(position={"x": 5, "y": 5})
     lab.locator(".lm-MenuBar-itemLabel", has_text="Run").first.click()
@@ -276,7 +283,7 @@ def lite():
 def test_chapter_4_runs_in_the_browser(lite):
     lab = lite.launch("book/04-generalized-whittaker.html")
     assert "path=book/04-generalized-whittaker.ipynb" in lab.url
-    _notebook(lab).wait_for(timeout=60_000)
+    wait_notebook(lab)
     assert lab.locator(".jp-OutputArea-output").count() == 0   # nothing stored: it runs here
     wait_kernel_idle(lab)
     run_all(lab)
@@ -333,7 +340,7 @@ def _answer(lab, source_start, new_source):
 def test_student_exercise_feedback_in_the_browser(lite):
     lab = lite.launch("exercises/solutions/sledge-L-star.html")
     assert "path=exercises/sledge-L-star.ipynb" in lab.url
-    _notebook(lab).wait_for(timeout=60_000)
+    wait_notebook(lab)
     # the student version: the answers are None, no solution in it
     _code_cell(lab, "Omega = None")
     assert "solution" not in _notebook(lab).inner_text().lower()
