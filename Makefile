@@ -37,7 +37,7 @@ export PIP_DISABLE_PIP_VERSION_CHECK := 1
 .PHONY: help setup mathjax lite-fetch lite serve bench-lite book site derive test unit doctest nbval browser notebooks exercises bench clean
 
 help:
-	@sed -n '3,12p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,14p' Makefile | sed 's/^# \{0,1\}//'
 
 # ---------------------------------------------------------------- set-up
 setup: $(SETUP_STAMP) mathjax lite-fetch
