@@ -50,7 +50,13 @@ def main(argv=None):
     ap.add_argument("--directory", type=Path,
                     default=Path(__file__).resolve().parent.parent / "_build" / "html")
     args = ap.parse_args(argv)
-    server = make_server(args.directory, args.port, verbose=True)
+    if not (args.directory / "index.html").is_file():
+        raise SystemExit(f"serve: no site in {args.directory}: run `make book` first")
+    try:
+        server = make_server(args.directory, args.port, verbose=True)
+    except OSError as err:
+        raise SystemExit(f"serve: cannot listen on 127.0.0.1:{args.port} ({err.strerror}); "
+                         f"choose another port: make serve SERVE_PORT=8001") from None
     print(f"serving {args.directory} on http://127.0.0.1:{args.port}/ (Ctrl-C stops)",
           flush=True)
     try:
