@@ -223,6 +223,10 @@ SETTINGS_OVERRIDES = {
 
 def build(out: Path, work: Path, pyodide_version: str = fetch_lite.PYODIDE_VERSION):
     _kernel_labextensions()
+    from jupyterlite_pyodide_kernel.constants import PYODIDE_VERSION as kernel_pyodide
+    if kernel_pyodide != pyodide_version:
+        sys.exit(f"build_lite: jupyterlite-pyodide-kernel is built for pyodide "
+                 f"{kernel_pyodide}, not {pyodide_version} (PYODIDE_VERSION in the Makefile)")
     pyodide_dir = fetch_lite.fetch_pyodide(work, pyodide_version)
     wheels_dir = fetch_lite.fetch_wheels(work)
     pkg = build_package_wheel(work / "dist")
