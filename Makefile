@@ -1,14 +1,17 @@
 # whittaker-teach: the two everyday commands are `make book` and `make test`.
 #
-#   make setup      install the package + [test,book] extras (editable) and
-#                   vendor MathJax 3 into build/vendor/mathjax (idempotent)
-#   make book       setup, build the site into _build/html, print the sledge derivation
+#   make setup      install the package + [numerics,test,book,lite] extras (editable),
+#                   vendor MathJax 3 into build/vendor/mathjax, fetch Pyodide + wheels
+#                   for the in-browser site into build/lite (idempotent)
+#   make book       setup, build the site into _build/html (with the in-browser
+#                   JupyterLite site in _build/html/lite), print the sledge derivation
+#   make serve      serve _build/html on http://127.0.0.1:8000 (JupyterLite needs http)
 #   make test       setup, then unit + integration tests, doctests, nbval over the
 #                   stored notebook outputs, the site build and the browser test
 #   make notebooks  re-execute every notebook in book/ and exercises/ in place
 #   make clean      remove everything generated
 #
-# Pieces of `make test` can be run alone: unit, doctest, nbval, site, browser;
+# Pieces of `make test` can be run alone: unit, doctest, nbval, site, lite, browser;
 # `make slow` runs the slow tests (not in `make test`).
 
 SHELL := /bin/bash
@@ -25,33 +28,55 @@ PYTEST_ARGS ?=
 JUPYTER_BOOK := $(PYTHON) -c 'import sys; from jupyter_book.cli.main import main; sys.argv[0] = "jupyter-book"; sys.exit(main())'
 
 SETUP_STAMP := build/.setup.stamp
+PYODIDE_VERSION ?= 314.0.6
+SERVE_PORT ?= 8000
 MATHJAX_DIR := build/vendor/mathjax
 NOTEBOOK_DIRS := book exercises
 
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 
-.PHONY: help setup mathjax book site derive test unit slow doctest nbval browser notebooks exercises bench clean
+.PHONY: help setup mathjax lite-fetch lite serve bench-lite book site derive test unit slow doctest nbval browser notebooks exercises bench clean
 
 help:
-	@sed -n '3,13p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,15p' Makefile | sed 's/^# \{0,1\}//'
 
 # ---------------------------------------------------------------- set-up
-setup: $(SETUP_STAMP) mathjax
+setup: $(SETUP_STAMP) mathjax lite-fetch
 
 # Re-install when pyproject.toml changes, or when the package first appears.
 $(SETUP_STAMP): pyproject.toml requirements/constraints.txt $(wildcard whittaker_teach/__init__.py)
-	$(PYTHON) -m pip install -q --root-user-action=ignore -c requirements/constraints.txt -e ".[test,book]"
+	$(PYTHON) -m pip install -q --root-user-action=ignore -c requirements/constraints.txt -e ".[numerics,test,book,lite]"
 	@mkdir -p $(@D) && touch $@
 
 mathjax:
 	@MATHJAX_VERSION=$(MATHJAX_VERSION) bash scripts/fetch_mathjax.sh $(MATHJAX_DIR)
 
+# Pyodide's core files (npm) and the wheels it is served (PyPI), once (stamps).
+lite-fetch:
+	@$(PYTHON) scripts/fetch_lite.py --pyodide $(PYODIDE_VERSION)
+
 # ---------------------------------------------------------------- the book
 book: setup
 	@$(MAKE) --no-print-directory site derive
 
+# The Jupyter Book site, then the JupyterLite site inside it (_build/html/lite).
 site: setup
 	$(JUPYTER_BOOK) build . -W -n --keep-going
+	@$(MAKE) --no-print-directory lite
+
+# The in-browser site alone (the notebooks' lite copies are made here, every time).
+lite: setup
+	$(PYTHON) scripts/build_lite.py --pyodide $(PYODIDE_VERSION) --out _build/html/lite
+
+# JupyterLite does not work from file://: serve the built site on 127.0.0.1.
+serve:
+	@test -f _build/html/index.html || { echo "serve: run 'make book' first"; exit 1; }
+	$(PYTHON) scripts/serve.py --port $(SERVE_PORT) --directory _build/html
+
+# Size, bytes downloaded, time to kernel ready, browser/native ratio of the
+# first derivation cell (prints figures; needs the built site).
+bench-lite: setup
+	$(PYTHON) scripts/bench_lite.py
 
 derive: setup
 	$(PYTHON) -m whittaker_teach derive sledge

@@ -648,7 +648,11 @@ def _in_notebook():
     except ImportError:
         return False
     ip = get_ipython()
-    return ip is not None and type(ip).__name__ == "ZMQInteractiveShell"
+    if ip is None:
+        return False
+    # Jupyter's kernel, or the Pyodide kernel of the in-browser site (JupyterLite)
+    kind = type(ip)
+    return kind.__name__ == "ZMQInteractiveShell" or kind.__module__.startswith("pyodide_kernel")
 
 
 def html_maths(text: str) -> str:

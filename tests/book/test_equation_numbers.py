@@ -23,6 +23,8 @@ def tags():
         pytest.skip("the site is not built (make site)")
     found = {}
     for page in SITE.rglob("*.html"):
+        if page.relative_to(SITE).parts[0] == "lite":
+            continue  # the JupyterLite application (tests/book/test_lite.py)
         for label in re.findall(r"\\tag\{([0-9.]+)\}", page.read_text(encoding="utf-8")):
             found.setdefault(label, set()).add(page.relative_to(SITE).as_posix())
     return found

@@ -67,6 +67,9 @@ def _html_pages() -> list[str]:
         rel = path.relative_to(SITE).as_posix()
         if rel.split("/")[0] in {"_static", "_sources", "mathjax", "_images"}:
             continue
+        if rel.split("/")[0] == "lite":
+            continue  # the JupyterLite application: tests/book/test_lite.py
+
         pages.append(rel)
     return pages
 

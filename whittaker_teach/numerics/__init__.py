@@ -21,12 +21,47 @@ code) and ``ivp`` (one integration), and nothing calls back:
 
 Imports run one way: entries -> state -> (validate, codegen); entries -> ivp,
 results; ``time_model`` -> ``integrators`` for ``method="DLA"``.  No circles
-(tested).  Importing this package imports none of them (nor numpy or scipy).
+(tested).  Importing this package imports none of them (nor numpy or
+scipy), but it checks that they are installed: they are the ``[numerics]`` extra
+(``pip install "whittaker-teach[numerics]"``), which the symbolic core does not
+need and the in-browser site (Pyodide) does not have. Without them every
+numerics entry point (``simulate``, ``examples.sledge_exact``,
+``bench numerics``) raises :class:`MissingExtraError`, an ``ImportError``
+that names the extra.
 """
 
 from importlib import import_module
+from importlib.util import find_spec
 
-__all__ = ["codegen", "time_model", "reduced_model", "integrators", "exact", "scene", "state",
+#: the modules of the ``[numerics]`` extra (tqdm only for ``bench numerics``)
+EXTRA_MODULES = ("numpy", "scipy")
+
+
+class MissingExtraError(ImportError):
+    """A numerics entry point was used without the ``[numerics]`` extra."""
+
+
+def require_extra(modules=EXTRA_MODULES, what="whittaker_teach.numerics"):
+    """Raise :class:`MissingExtraError` naming the extra if a module is missing.
+
+    >>> require_extra(())          # nothing to check: returns None
+    """
+    missing = [m for m in modules if find_spec(m) is None]
+    if missing:
+        raise MissingExtraError(
+            f"{what} needs {', '.join(missing)}, which are not installed: they are "
+            f"the [numerics] extra of whittaker-teach (pip install "
+            f"\"whittaker-teach[numerics]\"; `make setup` installs it). The "
+            f"symbolic core (derivations, checks, exercises) works without them; "
+            f"in the browser (Pyodide) numerics run only in a local install "
+            f"(`make book`).",
+            name=missing[0])
+
+
+require_extra()
+
+__all__ = ["MissingExtraError", "require_extra", "codegen", "time_model", "reduced_model",
+           "integrators", "exact", "scene", "state",
            "work_precision", "hard_cases", "results", "validate", "figures", "ivp"]
 
 

@@ -1,0 +1,361 @@
+"""The in-browser site (JupyterLite + Pyodide) inside the built book.
+
+Built by ``make site`` (scripts/build_lite.py) into ``_build/html/lite``. The
+static checks read the files; the browser test serves the site from 127.0.0.1,
+blocks and counts every request to any other address, opens chapter 4 through
+its page's "Run in the browser" button, runs every cell in Pyodide, then opens a
+student exercise the same way and checks the checker's feedback for a right and
+a wrong answer.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import re
+import sys
+import time
+from pathlib import Path
+from urllib.parse import parse_qs, urljoin, urlsplit
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+SITE = ROOT / "_build" / "html"
+LITE = SITE / "lite"
+sys.path.insert(0, str(ROOT / "scripts"))
+
+import build_lite  # noqa: E402
+import lite_notebooks  # noqa: E402
+
+if not (LITE / "jupyter-lite.json").is_file():
+    _msg = f"no lite site at {LITE}: run `make site` (or `make lite`) first"
+    if os.environ.get("WT_REQUIRE_SITE") == "1":
+        raise RuntimeError(_msg)
+    pytest.skip(_msg, allow_module_level=True)
+
+PYODIDE = LITE / "static" / "pyodide"
+KERNEL_READY_S = 180       # Pyodide start-up took 12-45 s on the shared 2-core machine
+RUN_ALL_S = 600
+_LAUNCH_RE = re.compile(r'<a href="([^"]*lite/[^"]*)"[^>]*class="[^"]*btn-run-in-browser')
+
+
+def _config():
+    return json.loads((LITE / "jupyter-lite.json").read_text())["jupyter-config-data"]
+
+
+def _launch_links(rel: str) -> list[str]:
+    return _LAUNCH_RE.findall((SITE / rel).read_text(encoding="utf-8"))
+
+
+def _page_of(doc: str) -> str:
+    return doc + ".html"
+
+
+# ------------------------------------------------------------------ static checks
+def test_kernel_uses_the_local_pyodide_and_no_pypi():
+    settings = _config()["litePluginSettings"][build_lite.KERNEL_PLUGIN]
+    assert settings["pyodideUrl"] == "./static/pyodide/pyodide.mjs"
+    assert settings["disablePyPIFallback"] is True
+    for url in settings.get("pipliteUrls", []):
+        assert url.startswith("./"), url
+    for name in ("pyodide.mjs", "pyodide.asm.mjs", "pyodide.asm.wasm", "python_stdlib.zip"):
+        assert (PYODIDE / name).is_file(), name
+
+
+def test_lock_lists_exactly_the_served_wheels_with_their_sha256():
+    lock = json.loads((PYODIDE / "pyodide-lock.json").read_text())
+    served = sorted(p.name for p in PYODIDE.glob("*.whl"))
+    listed = sorted(e["file_name"] for e in lock["packages"].values())
+    assert listed == served
+    for entry in lock["packages"].values():
+        digest = hashlib.sha256((PYODIDE / entry["file_name"]).read_bytes()).hexdigest()
+        assert entry["sha256"] == digest, entry["file_name"]
+        for dep in entry["depends"]:
+            assert dep.lower().replace("_", "-") in lock["packages"], (entry["name"], dep)
+    pkg = lock["packages"]["whittaker-teach"]
+    assert pkg["imports"] == ["whittaker_teach"]
+    assert sorted(pkg["depends"]) == ["mpmath", "sympy"]
+    for name in ("sympy", "mpmath", "ipython", "jedi", "comm", "micropip"):
+        assert name in lock["packages"], name
+    assert not [k for k in lock["packages"] if k in ("numpy", "scipy", "matplotlib")]
+
+
+def test_every_chapter_and_exercise_is_in_the_lite_site():
+    docs = build_lite.lite_docs()
+    chapters = sorted(p.relative_to(ROOT).with_suffix("").as_posix()
+                      for p in (ROOT / "book").glob("[0-9]*.ipynb"))
+    students = sorted(p.relative_to(ROOT).with_suffix("").as_posix()
+                      for p in (ROOT / "exercises").glob("*.ipynb"))
+    assert set(chapters) <= set(docs) and set(students) <= set(docs)
+    assert build_lite.OWN_SYSTEM in docs
+    for d in docs:
+        assert (LITE / "files" / f"{d}.ipynb").is_file(), d
+    assert not (LITE / "files" / "exercises" / "solutions").exists()
+
+
+def test_lite_copies_are_the_current_conversion_of_the_sources():
+    """Each lite notebook is what the converter makes from its source now."""
+    docs = build_lite.lite_docs()
+    index = lite_notebooks.Index.from_notebooks([ROOT / f"{d}.ipynb" for d in docs])
+    for d in docs:
+        source = json.loads((ROOT / f"{d}.ipynb").read_text(encoding="utf-8"))
+        built = json.loads((LITE / "files" / f"{d}.ipynb").read_text(encoding="utf-8"))
+        expected = lite_notebooks.lite_notebook(source, d, index)
+        assert [c["source"] for c in built["cells"]] == \
+            [c["source"] for c in expected["cells"]], f"{d}: stale, run `make lite`"
+
+
+def test_no_myst_syntax_left_in_the_lite_notebooks():
+    myst = re.compile(r"^(`{3,}|:{3,})\{[\w:-]+\}|\{(doc|ref|term|cite:[pt]|eq|numref)\}`"
+                      r"|^\([\w:.-]+\)=\s*$", re.M)
+    for nb_path in (LITE / "files").rglob("*.ipynb"):
+        nb = json.loads(nb_path.read_text(encoding="utf-8"))
+        for cell in nb["cells"]:
+            if cell["cell_type"] == "markdown":
+                src = "".join(cell["source"])
+                assert not myst.search(src), (nb_path.name, myst.search(src).group(0))
+
+
+def test_native_only_notebooks_say_so_and_the_others_run_here():
+    for nb_path in (LITE / "files").rglob("*.ipynb"):
+        nb = json.loads(nb_path.read_text(encoding="utf-8"))
+        meta = nb["metadata"]["whittaker_teach"]
+        first = "".join(nb["cells"][0]["source"])
+        if meta["runs_in_browser"]:
+            assert "runs locally" not in first
+            outputs = [o for c in nb["cells"] if c["cell_type"] == "code" for o in c["outputs"]]
+            assert outputs == [], f"{nb_path.name}: stored outputs in a live notebook"
+        else:
+            assert "runs locally, not in the browser" in first, nb_path.name
+            assert "make book" in first
+    assert json.loads((LITE / "files/book/04-generalized-whittaker.ipynb").read_text())[
+        "metadata"]["whittaker_teach"]["runs_in_browser"]
+
+
+def test_every_chapter_and_exercise_page_has_a_launch_link_that_resolves():
+    pages = {}
+    for doc in build_lite.toc_docs():
+        target = build_lite.lite_path(doc)
+        if target is not None:
+            pages[_page_of(doc)] = target
+    assert "book/04-generalized-whittaker.html" in pages
+    assert pages["exercises/solutions/kepler-orbit.html"] == "exercises/kepler-orbit.ipynb"
+    base = "http://127.0.0.1/"
+    for rel, target in pages.items():
+        links = _launch_links(rel)
+        assert links, f"{rel}: no 'Run in the browser' button"
+        for href in links:
+            url = urlsplit(urljoin(base + rel, href.replace("&amp;", "&")))
+            assert not href.startswith(("http:", "https:", "/")), href   # relative
+            assert (SITE / url.path.lstrip("/")).is_file(), href
+            (path,) = parse_qs(url.query)["path"]
+            assert path == target, (rel, href)
+            assert (LITE / "files" / path).is_file(), href
+
+
+def test_no_placeholder_buttons():
+    for rel in ("book/04-generalized-whittaker.html", "exercises/solutions/kepler-orbit.html"):
+        html = (SITE / rel).read_text(encoding="utf-8")
+        for host in ("mybinder.org", "colab.research.google.com", "github.com/whittaker-teach"):
+            assert host not in html, (rel, host)
+
+
+def test_exercise_pages_say_how_to_hand_in():
+    html = (SITE / "exercises/solutions/kepler-orbit.html").read_text(encoding="utf-8")
+    assert "browser&#8217;s storage" in html and "Download" in html
+
+
+# ------------------------------------------------------------------ the browser test
+CHROMIUM = "/usr/bin/chromium"
+# Every request not to 127.0.0.1 is blocked by the browser itself (a dead proxy
+# for everything but 127.0.0.1, and no name resolution), which covers the page,
+# its workers and the service worker alike, and is counted from the request
+# events. (Routing every request through Playwright would block too, but costs
+# about a second per request with Pyodide's many files.)
+BLOCK_ARGS = ["--no-sandbox", "--disable-gpu", "--no-first-run",
+              "--disable-background-networking", "--disable-component-update",
+              "--proxy-server=http://127.0.0.1:9", "--proxy-bypass-list=127.0.0.1",
+              "--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE 127.0.0.1"]
+_LOCAL = ("http://127.0.0.1:", "ws://127.0.0.1:", "data:", "blob:", "about:")
+
+
+class Lite:
+    """One browser context on the served site, counting requests that leave it."""
+
+    def __init__(self, browser, base_url):
+        self.browser = browser
+        self.base_url = base_url
+        self.outside = []
+        self.context = None
+
+    def _on_request(self, request):
+        if not request.url.startswith(_LOCAL):
+            self.outside.append(request.url)
+
+    def launch(self, page_rel):
+        """Open a book page and press its "Run in the browser" button.
+
+        Each launch gets a fresh browser profile (no JupyterLab workspace or
+        kernel restored from an earlier test)."""
+        if self.context is not None:
+            self.context.close()
+        self.context = self.browser.new_context(viewport={"width": 1280, "height": 900})
+        self.context.on("request", self._on_request)
+        page = self.context.new_page()
+        page.goto(self.base_url + page_rel)
+        button = page.locator("a.btn-run-in-browser")
+        assert button.count() == 1, f"{page_rel}: no launch button"
+        with self.context.expect_page() as new:
+            button.click()
+        lab = new.value
+        lab.wait_for_load_state()
+        return lab
+
+
+def _kernel_status(lab):
+    return lab.locator(".jp-StatusBar-TextItem", has_text="Pyodide")
+
+
+def wait_kernel_idle(lab, timeout_s=KERNEL_READY_S):
+    _kernel_status(lab).filter(has_text="Idle").wait_for(timeout=timeout_s * 1000)
+
+
+def _notebook(lab):
+    return lab.locator(".jp-Notebook:visible").first
+
+
+def wait_notebook(lab, min_code_cells=2):
+    """Wait until the notebook is shown with its code cells' editors."""
+    _notebook(lab).wait_for(timeout=60_000)
+    _notebook(lab).locator(".jp-CodeCell .cm-content").nth(min_code_cells - 1).wait_for(
+        timeout=60_000)
+
+
+def run_all(lab, timeout_s=RUN_ALL_S):
+    _notebook(lab).click(position={"x": 5, "y": 5})
+    lab.locator(".lm-MenuBar-itemLabel", has_text="Run").first.click()
+    lab.locator(".lm-Menu-itemLabel").get_by_text("Run All Cells", exact=True).click()
+    deadline = time.monotonic() + timeout_s
+    lab.wait_for_timeout(1000)
+    while time.monotonic() < deadline:
+        busy = lab.locator(".jp-InputPrompt", has_text="[*]").count()
+        if busy == 0 and "Idle" in _kernel_status(lab).inner_text():
+            return
+        lab.wait_for_timeout(500)
+    raise AssertionError("the cells did not finish running")
+
+
+def _code_cell(lab, source_start):
+    cells = _notebook(lab).locator(".jp-CodeCell")
+    # the first line of each cell's source (a collapsed input has no editor: "")
+    firsts = cells.evaluate_all(
+        "els => els.map(e => { const l = e.querySelector('.cm-content .cm-line');"
+        " return l ? l.textContent : ''; })")
+    for i, text in enumerate(firsts):
+        if text.lstrip().startswith(source_start):
+            return cells.nth(i), i
+    raise AssertionError(f"no code cell starts with {source_start!r}: {firsts}")
+
+
+def _errors(lab):
+    return lab.locator(".jp-OutputArea-output[data-mime-type='application/vnd.jupyter.stderr']")
+
+
+@pytest.fixture(scope="module")
+def lite():
+    playwright = pytest.importorskip("playwright.sync_api")
+    if not os.path.exists(CHROMIUM):
+        pytest.skip(f"{CHROMIUM} not installed")
+    import serve
+    server, base_url = serve.serve_in_thread(SITE)
+    with playwright.sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=CHROMIUM, args=BLOCK_ARGS)
+        try:
+            yield Lite(browser, base_url)
+        finally:
+            browser.close()
+            server.shutdown()
+
+
+@pytest.mark.browser
+@pytest.mark.slow
+def test_chapter_4_runs_in_the_browser(lite):
+    lab = lite.launch("book/04-generalized-whittaker.html")
+    assert "path=book/04-generalized-whittaker.ipynb" in lab.url
+    wait_notebook(lab)
+    assert lab.locator(".jp-OutputArea-output").count() == 0   # nothing stored: it runs here
+    wait_kernel_idle(lab)
+    run_all(lab)
+    errors = _errors(lab)
+    assert errors.count() == 0, errors.all_inner_texts()[:3]
+    # every code cell ran: [n], not [ ] (a collapsed input, hide-input, shows no prompt)
+    nb = json.loads((LITE / "files/book/04-generalized-whittaker.ipynb").read_text())
+    code = [c for c in nb["cells"] if c["cell_type"] == "code"]
+    hidden = sum(bool(c["metadata"].get("jupyter", {}).get("source_hidden")) for c in code)
+    prompts = [p.strip() for p in
+               _notebook(lab).locator(".jp-CodeCell .jp-InputPrompt").all_inner_texts()]
+    assert len(prompts) == len(code)
+    ran = [p for p in prompts if re.fullmatch(r"\[\d+\]:", p)]
+    assert len(ran) == len(code) - hidden and prompts.count("") == hidden, prompts
+    # the reduced equation (1.26) for the sledge, typeset by MathJax
+    cell, _ = _code_cell(lab, 'red.steps.only("1.26"')
+    out = cell.locator(".jp-OutputArea")
+    assert "(1.26)" in out.inner_text() and "generalized Whittaker equations" in out.inner_text()
+    # JupyterLab typesets lazily, when an output comes into view
+    latex = out.locator(".jp-RenderedLatex")
+    assert latex.count() >= 1
+    latex.last.scroll_into_view_if_needed()
+    latex.last.locator("mjx-container").first.wait_for(timeout=60_000)
+    assert out.locator("mjx-merror").count() == 0
+    assert lite.outside == [], lite.outside
+
+
+def _answer(lab, source_start, new_source):
+    """Replace a cell's code, run it and the next cell (the check); the check's output."""
+    cell, _ = _code_cell(lab, source_start)
+    check_cell, _ = _code_cell(lab, 'check("sledge-L-star", Omega')
+    before = check_cell.locator(".jp-InputPrompt").inner_text().strip()
+    editor = cell.locator(".cm-content")
+    editor.click()
+    lab.keyboard.press("Control+A")
+    lab.keyboard.press("Delete")
+    lab.keyboard.insert_text(new_source)
+    lab.keyboard.press("Shift+Enter")      # runs the answer, selects the check cell
+    lab.keyboard.press("Shift+Enter")      # runs the check
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline:      # the check cell ran again
+        prompt = check_cell.locator(".jp-InputPrompt").inner_text().strip()
+        if prompt != before and re.fullmatch(r"\[\d+\]:", prompt):
+            break
+        lab.wait_for_timeout(250)
+    else:
+        raise AssertionError("the check cell did not run")
+    check_cell.locator(".wt-feedback").first.wait_for(timeout=30_000)
+    return check_cell
+
+
+@pytest.mark.browser
+@pytest.mark.slow
+def test_student_exercise_feedback_in_the_browser(lite):
+    lab = lite.launch("exercises/solutions/sledge-L-star.html")
+    assert "path=exercises/sledge-L-star.ipynb" in lab.url
+    wait_notebook(lab)
+    # the student version: the answers are None, no solution in it
+    _code_cell(lab, "Omega = None")
+    assert "solution" not in _notebook(lab).inner_text().lower()
+    wait_kernel_idle(lab)
+    run_all(lab)
+    assert _errors(lab).count() == 0, _errors(lab).all_inner_texts()[:3]
+
+    right = "Omega = m/2*xdot**2*(1 + sp.tan(theta)**2) + J/2*(xdot*thetaprime)**2 - k**2*theta**2/2"
+    check = _answer(lab, "Omega = ", right)
+    assert check.locator(".wt-feedback-correct").count() == 1, check.inner_text()
+    assert "Correct." in check.locator(".wt-feedback").inner_text()
+
+    wrong = "Omega = m/2*xdot**2 + J/2*(xdot*thetaprime)**2 - k**2*theta**2/2"
+    check = _answer(lab, "Omega = ", wrong)
+    assert check.locator(".wt-feedback-wrong").count() == 1, check.inner_text()
+    assert "Not yet right." in check.locator(".wt-feedback").inner_text()
+    assert _errors(lab).count() == 0, _errors(lab).all_inner_texts()[:3]
+    assert lite.outside == [], lite.outside
