@@ -1,0 +1,52 @@
+"""The course website's own styles and script, and theme settings (loaded from _config.yml).
+
+* ``wt_static/wt-site.css``: display maths and text outputs are never cut off.
+  The theme (pydata-sphinx-theme) lays a display equation out as a
+  ``row-reverse`` flex box with ``overflow: hidden``, so an equation wider than
+  the column loses its *left* part without a scroll bar; here every display
+  scrolls horizontally from its left edge, with a visible scroll bar and a
+  shadow at the edge that hides more; in-line maths scroll too instead of
+  being clipped; text outputs wrap. Print rules for ``make pdf`` are in the
+  same file (``@media print``).
+* ``wt_static/wt-site.js``: after MathJax has typeset the page, marks every
+  equation that is wider than its column (``wt-wide``), so that the print
+  style can scale it to the page width, and gives it a keyboard focus stop and
+  a label so that it can be scrolled without a mouse.
+* ``html_context["default_mode"]``: pydata-sphinx-theme 0.17 writes
+  ``data-default-mode=""`` when it is unset and its script then logs "Got invalid theme mode: .
+  Resetting to auto." as a console error on every page. The site's figures
+  are drawn for a light background, so the default is ``light`` (the theme's
+  switch still offers dark).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+STATIC = Path(__file__).with_name("wt_static")
+
+
+def _configure(app, config):
+    config.html_static_path = [*config.html_static_path, str(STATIC)]
+    # a template variable of pydata-sphinx-theme (html_context), not a theme option
+    context = dict(config.html_context or {})
+    context.setdefault("default_mode", "light")
+    config.html_context = context
+
+
+def _copy_static(app, exception):
+    """Sphinx copies static files only when some page is rebuilt; an edit of
+    the CSS/JS alone must reach the site too."""
+    if exception is None and app.builder.format == "html":
+        out = Path(app.outdir, "_static")
+        out.mkdir(parents=True, exist_ok=True)
+        for f in STATIC.iterdir():
+            if f.is_file():
+                (out / f.name).write_bytes(f.read_bytes())
+
+
+def setup(app):
+    app.connect("config-inited", _configure)
+    app.connect("build-finished", _copy_static)
+    app.add_css_file("wt-site.css", priority=900)
+    app.add_js_file("wt-site.js", priority=900)
+    return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}
