@@ -33,7 +33,8 @@ from urllib.parse import urljoin, urlsplit
 ROOT = Path(__file__).resolve().parents[1]
 PDF_NAME = "whittaker-teach.pdf"
 CHROMIUM = os.environ.get("CHROMIUM") or shutil.which("chromium") or "/usr/bin/chromium"
-BOOK_PATH = "__print__/book.html"  # served from memory, never written into the site
+BOOK_PATH = "__print__/book.html"
+PRINT_CSS = ROOT / "book" / "_ext" / "wt_static" / "wt-print.css"  # served from memory, never written into the site
 
 
 def toc_pages(toc_file: Path) -> list[tuple[str, str]]:
@@ -68,7 +69,7 @@ def build_document(site: Path, pages: list[tuple[str, str]]) -> str:
     base0 = page_url[pages[1][1]]
     for link in first.find_all("link", rel="stylesheet"):
         head.append(f'<link rel="stylesheet" href="{absolute(link["href"], base0)}">')
-    head.append('<link rel="stylesheet" href="/_static/wt-print.css">')
+    head.append(f"<style>{PRINT_CSS.read_text('utf-8')}</style>")
     for script in first.find_all("script"):
         src = script.get("src") or ""
         if "mathjax" in src:
