@@ -5,13 +5,14 @@
   ``row-reverse`` flex box with ``overflow: hidden``, so an equation wider than
   the column loses its *left* part without a scroll bar; here every display
   scrolls horizontally from its left edge, with a visible scroll bar and a
-  shadow at the edge that hides more; in-line maths scroll too instead of
-  being clipped; text outputs wrap. Print rules for ``make pdf`` are in the
-  same file (``@media print``).
+  shade at the edge that hides more; in-line maths scroll too instead of
+  being clipped; text outputs wrap; long literals break.
 * ``wt_static/wt-site.js``: after MathJax has typeset the page, marks every
-  equation that is wider than its column (``wt-wide``), so that the print
-  style can scale it to the page width, and gives it a keyboard focus stop and
-  a label so that it can be scrolled without a mouse.
+  equation that is wider than its column (``wt-wide``, and which edges hide
+  more of it), and gives it a keyboard focus stop and a label so that it can
+  be scrolled without a mouse.
+* ``wt_static/wt-print.css``: the print style of ``make pdf``
+  (``scripts/make_pdf.py`` inlines it into its one-document edition).
 * the bibliography style ``wt_author_year``: the chapters cite author-year
   ("Mei (1983)", sphinxcontrib-bibtex ``author_year`` reference style), so the
   reference list is labelled the same way ("[Mei 1983]") and sorted by author
