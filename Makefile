@@ -6,12 +6,13 @@
 #   make book       setup, build the site into _build/html (with the in-browser
 #                   JupyterLite site in _build/html/lite), print the sledge derivation
 #   make serve      serve _build/html on http://127.0.0.1:8000 (JupyterLite needs http)
+#   make pdf        the whole book as one PDF (_build/pdf/whittaker-teach.pdf, linked from the site)
 #   make test       setup, then unit + integration tests, doctests, nbval over the
-#                   stored notebook outputs, the site build and the browser test
+#                   stored notebook outputs, the site build, the PDF and the browser/PDF tests
 #   make notebooks  re-execute every notebook in book/ and exercises/ in place
 #   make clean      remove everything generated
 #
-# Pieces of `make test` can be run alone: unit, doctest, nbval, site, lite, browser;
+# Pieces of `make test` can be run alone: unit, doctest, nbval, site, lite, pdf, browser;
 # `make slow` runs the slow tests (not in `make test`).
 
 SHELL := /bin/bash
@@ -35,10 +36,10 @@ NOTEBOOK_DIRS := book exercises
 
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 
-.PHONY: help setup mathjax lite-fetch lite serve bench-lite book site derive test unit slow doctest nbval browser notebooks exercises bench clean
+.PHONY: help setup sysdeps mathjax lite-fetch lite serve bench-lite book site pdf derive test unit slow doctest nbval browser notebooks exercises bench clean
 
 help:
-	@sed -n '3,15p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,17p' Makefile | sed 's/^# \{0,1\}//'
 
 # ---------------------------------------------------------------- set-up
 setup: $(SETUP_STAMP) mathjax lite-fetch
@@ -47,6 +48,11 @@ setup: $(SETUP_STAMP) mathjax lite-fetch
 $(SETUP_STAMP): pyproject.toml requirements/constraints.txt $(wildcard whittaker_teach/__init__.py)
 	$(PYTHON) -m pip install -q --root-user-action=ignore -c requirements/constraints.txt -e ".[numerics,test,book,lite]"
 	@mkdir -p $(@D) && touch $@
+
+# Debian chromium and poppler-utils (browser test, PDF): installed when root,
+# otherwise a clear failure naming the packages.
+sysdeps:
+	@bash scripts/system_deps.sh
 
 mathjax:
 	@MATHJAX_VERSION=$(MATHJAX_VERSION) bash scripts/fetch_mathjax.sh $(MATHJAX_DIR)
@@ -81,11 +87,17 @@ bench-lite: setup
 derive: setup
 	$(PYTHON) -m whittaker_teach derive sledge
 
+# The printable edition: the built site's pages joined, printed by headless
+# Chromium (scripts/make_pdf.py); the PDF is copied into _build/html too.
+pdf: setup sysdeps
+	@[ -f _build/html/index.html ] || $(MAKE) --no-print-directory site
+	$(PYTHON) scripts/make_pdf.py
+
 # ---------------------------------------------------------------- tests
 # --keep-going: every part runs and reports even if an earlier one failed;
 # `make test` still fails if any part failed.
 test: setup
-	@$(MAKE) --no-print-directory --keep-going unit doctest nbval site browser
+	@$(MAKE) --no-print-directory --keep-going unit doctest nbval site pdf-after-site browser
 
 # tests/unit and tests/integration; a folder without test files is skipped
 # (pytest would exit 5, "no tests collected").
@@ -126,9 +138,14 @@ nbval: setup
 	  PYTHONHASHSEED=0 $(PYTHON) -m pytest --nbval --nbval-current-env $$dirs -p no:randomly -q; \
 	fi
 
-# Headless Chromium against the site built into _build/html by `make site`.
-browser: setup
-	WT_REQUIRE_SITE=1 $(PYTHON) -m pytest tests/book -q
+# (in `make test`, after `site`: the PDF of the site just built)
+pdf-after-site: setup sysdeps
+	$(PYTHON) scripts/make_pdf.py
+
+# Headless Chromium against the site built into _build/html by `make site`,
+# and the PDF of `make pdf`: missing Chromium/poppler, site or PDF fail.
+browser: setup sysdeps
+	WT_REQUIRE_SITE=1 WT_REQUIRE_PDF=1 $(PYTHON) -m pytest tests/book -q
 
 # ---------------------------------------------------------------- notebooks
 notebooks: setup
