@@ -23,6 +23,18 @@ RATIONAL_OPS_LIMIT = 320
 FACTOR_LIMIT = 200
 
 
+def _ops_above(expr, limit):
+    """``count_ops(expr) > limit``, without counting a huge tree: a tree of more than
+    4 * limit + 1 nodes has more than ``limit`` operations (each operation joins at
+    most four nodes), and its size is counted only that far."""
+    n, stack = 0, [expr]
+    while stack and n <= 4 * limit + 1:
+        e = stack.pop()
+        n += 1
+        stack.extend(e.args)
+    return n > 4 * limit + 1 or sp.count_ops(expr) > limit
+
+
 def collected(expr, symbols):
     """``expand``, group the terms by their monomial in ``symbols`` (velocities,
     accelerations) and ``factor`` each coefficient: the form a student would write.
@@ -30,7 +42,7 @@ def collected(expr, symbols):
     Unlike ``sympy.collect`` it does not recurse into function arguments, so its
     cost is one ``expand`` and one ``factor`` per monomial.
     """
-    if sp.count_ops(expr) > OPS_LIMIT:
+    if _ops_above(expr, OPS_LIMIT):
         return expr
     groups = {}
     for term in sp.Add.make_args(sp.expand(expr)):
@@ -39,7 +51,7 @@ def collected(expr, symbols):
     out = []
     for mono, coeffs in groups.items():
         c = sp.Add(*coeffs)
-        if sp.count_ops(c) <= FACTOR_LIMIT:
+        if not _ops_above(c, FACTOR_LIMIT):
             c = sp.factor(c)
         out.append(c * mono)
     return pythagoras(sp.Add(*out))
@@ -62,7 +74,7 @@ def rational(expr, symbols=()):
 
     Expressions larger than ``RATIONAL_OPS_LIMIT`` operations are returned as they
     are: the rewrite is for reading, and results are correct either way."""
-    if sp.count_ops(expr) > RATIONAL_OPS_LIMIT:
+    if _ops_above(expr, RATIONAL_OPS_LIMIT):
         return expr
     num, den = sp.fraction(sp.cancel(expr))
     return collected(num, symbols) / pythagoras(sp.factor(den))
