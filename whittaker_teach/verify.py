@@ -17,7 +17,7 @@ Check('demo', holds=True, method='numeric', points=6, max_residual<1e-30)
 from __future__ import annotations
 
 import random
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import mpmath
 import sympy as sp
@@ -54,6 +54,11 @@ class Check:
     detail: str
     points: int = 0
     max_residual: float = 0.0
+    #: the expressions compared, ``lhs[i] == rhs[i]``, and the sampler of the points:
+    #: what was checked, so that a display can be compared with it
+    lhs: tuple = field(default=(), repr=False, compare=False)
+    rhs: tuple = field(default=(), repr=False, compare=False)
+    sample: object = field(default=None, repr=False, compare=False)
 
     @property
     def status(self) -> str:
@@ -282,21 +287,25 @@ def check_identity(label, claim, lhs, rhs, sample, *, exact=True, points=POINTS,
     ``sample(rng)`` returns a dict {Symbol: float} of one random admissible
     point; it must give a value for every free symbol.
     """
-    lhs, rhs = _as_list(lhs), _as_list(rhs)
+    lhs = [sp.sympify(a) for a in _as_list(lhs)]
+    rhs = [sp.sympify(b) for b in _as_list(rhs)]
+    what = dict(lhs=tuple(lhs), rhs=tuple(rhs), sample=sample)
     if len(lhs) != len(rhs):
-        return Check(label, claim, False, "exact", f"{len(lhs)} left sides, {len(rhs)} right sides")
+        return Check(label, claim, False, "exact", f"{len(lhs)} left sides, {len(rhs)} right sides",
+                     **what)
     if exact:
-        ways = [_exactly_zero(sp.sympify(a - b)) for a, b in zip(lhs, rhs)]
+        ways = [_exactly_zero(a - b) for a, b in zip(lhs, rhs)]
         if all(ways):
-            return Check(label, claim, True, "exact", ", ".join(sorted(set(ways))))
+            return Check(label, claim, True, "exact", ", ".join(sorted(set(ways))), **what)
     try:
         worst, used = _numeric(lhs, rhs, sample, points, seed)
     except Unevaluable as err:
-        return Check(label, claim, None, "unverified", f"not evaluable numerically: {err}")
+        return Check(label, claim, None, "unverified", f"not evaluable numerically: {err}", **what)
     detail = f"mpmath at {DPS} digits"
     if used == 0:
-        return Check(label, claim, None, "unverified", "no admissible point could be evaluated")
-    return Check(label, claim, worst <= TOLERANCE, "numeric", detail, used, worst)
+        return Check(label, claim, None, "unverified", "no admissible point could be evaluated",
+                     **what)
+    return Check(label, claim, worst <= TOLERANCE, "numeric", detail, used, worst, **what)
 
 
 def check_zero(label, claim, expr, sample, **kw):
