@@ -34,11 +34,11 @@ from __future__ import annotations
 
 import sympy as sp
 
+from .coordinates import name as _name, sign_assumptions as _assume
 from .dag import substitute, tree_size
 from .errors import ModelError, ModelTypeError, guarded
 from .rewrite import collected, rational
 from .steps import Derivation, Report, Step, eq, notation, partial
-from .system import T, _name
 from .verify import DPS, check_identity, check_zero, shared_points
 
 __all__ = ["Reduction"]
@@ -547,10 +547,6 @@ class Reduction:
         """
         from .numerics.reduced_model import simulate
         return simulate(self, q0, qp0, h, span, params, method, rtol, atol, **options)
-
-
-def _assume(c):
-    return {k: True for k in ("positive", "negative") if getattr(c, "is_" + k)}
 
 
 LSTAR = notation("L*", "L^{*}")

@@ -43,17 +43,17 @@ import random
 import mpmath
 import sympy as sp
 from sympy.core.function import AppliedUndef
-from sympy.physics.mechanics import dynamicsymbols
 
+from .coordinates import T, name, sign_assumptions
 from .dag import max_depth, substitute
 from .errors import ModelError, ModelTypeError, guarded
+from .reduction import Reduction
 from .rewrite import collected, rational
 from .steps import Derivation, Report, Step, eq
 from .verify import DPS, check_identity, check_zero, shared_points
 
 __all__ = ["ChaplyginSystem"]
 
-T = dynamicsymbols._t
 
 #: Deepest nesting of an input expression: differentiating it twice (1.4) must stay
 #: well inside Python's recursion limit.
@@ -77,12 +77,7 @@ def _check_values(expr, what):
                          "differentiate (1.4) reliably; write it with fewer nested functions")
 
 
-def _name(c):
-    return c.func.__name__
-
-
-def _sign_assumptions(c):
-    return {k: True for k in ("positive", "negative") if getattr(c, "is_" + k)}
+_name, _sign_assumptions = name, sign_assumptions
 
 
 def _require_expr(value, what):
@@ -470,7 +465,6 @@ class ChaplyginSystem:
     def reduce(self, coordinate, direction=+1):
         """The Whittaker reduction with ``coordinate`` as q_eps, travelled with
         sign(qdot_eps) = ``direction``: a :class:`~whittaker_teach.reduction.Reduction`."""
-        from .reduction import Reduction
         return Reduction(self, coordinate, direction)
 
     def __repr__(self):

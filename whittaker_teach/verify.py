@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 import mpmath
 import sympy as sp
 
-from .dag import tree_size
+from .dag import expanded_terms, tree_size
 
 __all__ = ["Check", "check_identity", "check_zero", "evaluate", "shared_points", "DPS",
            "TOLERANCE"]
@@ -36,6 +36,8 @@ POINTS = 6
 #: Above this number of nodes (``tree_size``), the exact attempt is skipped: it
 #: would cost more than the numeric check.
 EXACT_SIZE_LIMIT = 450
+#: ... and so is an ``expand`` estimated to produce more terms than this.
+EXACT_TERMS_LIMIT = 200
 
 
 @dataclass(frozen=True)
@@ -95,7 +97,8 @@ def _exactly_zero(diff):
     """Return the name of the rewrite that shows ``diff == 0``, or None."""
     if diff == 0:
         return "identical as built"
-    if tree_size(diff, EXACT_SIZE_LIMIT) > EXACT_SIZE_LIMIT:
+    if (tree_size(diff, EXACT_SIZE_LIMIT) > EXACT_SIZE_LIMIT
+            or expanded_terms(diff, EXACT_TERMS_LIMIT) > EXACT_TERMS_LIMIT):
         return None
     if sp.expand(diff) == 0:
         return "expand"
