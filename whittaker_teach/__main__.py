@@ -8,7 +8,7 @@ Commands::
                                   each with its paper number and its check
     bench derivation [--repeat N] fresh-process time of the whole derivation with
                                   verification, against sympy.physics.mechanics
-    bench derivation --scale [--n 2..8] [--no-memory]
+    bench derivation --scale [--n 2..8] [--family F] [--no-memory]
                                   the same for families of n coordinates: a table of
                                   reduce, verify and peer times and peak memory
     bench numerics [--quick] [--json FILE] [--plot FILE] [--quiet]
@@ -78,6 +78,8 @@ def main(argv=None):
     b.add_argument("--scale", action="store_true",
                    help="derivation: the families of n coordinates (bench.family)")
     b.add_argument("--n", default="2..8", help="derivation --scale: the range of n, e.g. 2..4")
+    b.add_argument("--family", choices=("both", "nonholonomic", "holonomic"), default="both",
+                   help="derivation --scale: which family")
     b.add_argument("--no-memory", action="store_true",
                    help="derivation --scale: skip the traced runs for peak memory")
     b.add_argument("--quick", action="store_true", help="numerics: a smaller study")

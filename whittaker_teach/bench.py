@@ -143,17 +143,18 @@ def family(n, holonomic=False):
 
 
 def run_ours(n, holonomic):
-    """{"reduce": s, "verify": s, "ok": bool} for the family, in this process."""
+    """{"reduce": s, "verify": s, "ok": bool} for the family, in this process (CPU time
+    of the process: a load on the machine does not count)."""
     import time
     import whittaker_teach as wt
     L, coords, dep = family(n, holonomic)
-    t0 = time.perf_counter()
+    t0 = time.process_time()
     red = wt.ChaplyginSystem(L, coords, dependent=dep).reduce(coords[0], +1)
     red.equations
     red.accelerations()
-    t1 = time.perf_counter()
+    t1 = time.process_time()
     ok = red.verify().ok
-    t2 = time.perf_counter()
+    t2 = time.process_time()
     return {"reduce": t1 - t0, "verify": t2 - t1, "ok": ok}
 
 
@@ -162,11 +163,11 @@ def run_peer(n, holonomic):
     import time
     from sympy.physics.mechanics import LagrangesMethod
     L, coords, dep = family(n, holonomic)
-    t0 = time.perf_counter()
+    t0 = time.process_time()
     lm = LagrangesMethod(L, coords, nonhol_coneqs=[k - v for k, v in dep.items()] or None)
     lm.form_lagranges_equations()
     lm.rhs()
-    return {"peer": time.perf_counter() - t0, "ok": True}
+    return {"peer": time.process_time() - t0, "ok": True}
 
 
 _CHILD = """
@@ -220,11 +221,12 @@ def scale_table(rows, title):
 def scale_main(args):
     lo, _, hi = args.n.partition("..")
     ns = range(int(lo), int(hi or lo) + 1)
-    print("reduce: build, reduce, (1.26) and q'' solved; verify: every check; peer: "
-          "LagrangesMethod\nforming and solving; ratio = (reduce + verify) / peer; fresh "
-          "process each; peak memory by tracemalloc")
+    print("CPU seconds. reduce: build, reduce, (1.26) and q'' solved; verify: every check;\n"
+          "peer: LagrangesMethod forming and solving; ratio = (reduce + verify) / peer;\n"
+          "a fresh process each; peak memory (MiB, after the imports) by tracemalloc")
     ok = True
-    for holonomic in (False, True):
+    kinds = {"both": (False, True), "nonholonomic": (False,), "holonomic": (True,)}
+    for holonomic in kinds[getattr(args, "family", "both")]:
         rows = scale_rows(ns, holonomic, memory=not args.no_memory)
         title = ("holonomic family" if holonomic else
                  "non-holonomic family (g = (n - 1) // 2 constraints)")
