@@ -10,6 +10,8 @@ a**2 + a*b*(tan(theta)**2 + 1)
 
 import sympy as sp
 
+from .dag import expanded_terms
+
 __all__ = ["collected", "rational", "pythagoras"]
 
 #: Above this operation count, a rewrite is skipped and the expression kept as built.
@@ -19,6 +21,8 @@ OPS_LIMIT = 2000
 #: ``rational`` (cancel) is tried only below this size: its cost grows very fast with
 #: the number of roots and functions it must treat as generators.
 RATIONAL_OPS_LIMIT = 320
+#: A rewrite is skipped when ``expand`` is estimated to give more terms than this.
+SWELL_LIMIT = 50000
 #: Coefficients larger than this are left expanded rather than factored.
 FACTOR_LIMIT = 200
 
@@ -26,13 +30,15 @@ FACTOR_LIMIT = 200
 def _ops_above(expr, limit):
     """``count_ops(expr) > limit``, without counting a huge tree: a tree of more than
     4 * limit + 1 nodes has more than ``limit`` operations (each operation joins at
-    most four nodes), and its size is counted only that far."""
+    most four nodes), and its size is counted only that far.  Also True when
+    ``expand`` would swell it beyond that (a power of a sum such as (1 + x)**40)."""
     n, stack = 0, [expr]
     while stack and n <= 4 * limit + 1:
         e = stack.pop()
         n += 1
         stack.extend(e.args)
-    return n > 4 * limit + 1 or sp.count_ops(expr) > limit
+    return (n > 4 * limit + 1 or expanded_terms(expr, SWELL_LIMIT) > SWELL_LIMIT
+            or sp.count_ops(expr) > limit)
 
 
 def collected(expr, symbols):
