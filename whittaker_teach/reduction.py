@@ -95,6 +95,7 @@ class Reduction:
     system, each with its verification; ``verify()`` re-runs the checks.
     """
 
+    @guarded("the Whittaker reduction")
     def __init__(self, system, coordinate, direction=+1):
         self.system = S = system
         self.direction = _check_direction(direction)
