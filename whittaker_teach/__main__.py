@@ -8,6 +8,9 @@ Commands::
                                   each with its paper number and its check
     bench derivation [--repeat N] fresh-process time of the whole derivation with
                                   verification, against sympy.physics.mechanics
+    bench derivation --scale [--n 2..8] [--family F] [--no-memory]
+                                  the same for families of n coordinates: a table of
+                                  reduce, verify and peer times and peak memory
     bench numerics [--quick] [--json FILE] [--csv FILE] [--plot FILE] [--quiet]
                                   speed against error: the full, reduced and exact
                                   models of the sledge (whittaker_teach.numerics)
@@ -83,6 +86,13 @@ def main(argv=None):
     b = sub.add_parser("bench", help="benchmarks that print figures")
     b.add_argument("what", choices=("derivation", "numerics"))
     b.add_argument("--repeat", type=int, default=3, help="fresh processes per measurement")
+    b.add_argument("--scale", action="store_true",
+                   help="derivation: the families of n coordinates (bench.family)")
+    b.add_argument("--n", default="2..8", help="derivation --scale: the range of n, e.g. 2..4")
+    b.add_argument("--family", choices=("both", "nonholonomic", "holonomic"), default="both",
+                   help="derivation --scale: which family")
+    b.add_argument("--no-memory", action="store_true",
+                   help="derivation --scale: skip the traced runs for peak memory")
     b.add_argument("--quick", action="store_true", help="numerics: a smaller study")
     b.add_argument("--json", metavar="FILE", help="numerics: write every run to FILE")
     b.add_argument("--plot", metavar="FILE", help="numerics: the error-against-time figure")

@@ -1,5 +1,14 @@
 """Benchmarks that print figures (never timed tests).
 
+``python -m whittaker_teach bench derivation --scale [--n 2..8]``: for the
+families of :func:`family` with n coordinates (non-holonomic and holonomic),
+the time to reduce (build the system, reduce, the equations (1.26) and q''
+solved) and to verify (every step's check), against
+sympy.physics.mechanics' LagrangesMethod forming and solving the same
+system's equations (the constraints as non-holonomic constraints), and the
+peak memory (tracemalloc) of each side.  Each figure comes from a fresh
+process; memory from a separate traced process (tracing slows the run).
+
 ``python -m whittaker_teach bench derivation``: in fresh processes, the time
 to build the sledge, derive every step of the paper and verify them all,
 against the time sympy.physics.mechanics' LagrangesMethod takes to form and
@@ -8,30 +17,37 @@ the time of ``import whittaker_teach``.  Each figure is the median over
 ``--repeat`` fresh processes.
 """
 
+import json
 import statistics
 import subprocess
 import sys
 
+# Each script prints: total time, success, time after the imports (compute only).
 OURS = """
 import time; t0 = time.perf_counter()
 import whittaker_teach as wt
 from whittaker_teach.examples import section3
+from whittaker_teach import system, reduction, nielsen, steps, verify, render
+t1 = time.perf_counter()
 red = wt.examples.sledge().reduce("x", +1)
 ok = red.verify().ok and all(s.check is None or s.check.holds for s in section3(reduction=red))
-print(time.perf_counter() - t0, ok)
+print(time.perf_counter() - t0, ok, time.perf_counter() - t1)
 """
 
 CORE = """
 import time; t0 = time.perf_counter()
 import whittaker_teach as wt
+from whittaker_teach import system, reduction, nielsen, steps, verify, render, examples
+t1 = time.perf_counter()
 ok = wt.examples.sledge().reduce("x", +1).verify().ok
-print(time.perf_counter() - t0, ok)
+print(time.perf_counter() - t0, ok, time.perf_counter() - t1)
 """
 
 PEER = """
 import time; t0 = time.perf_counter()
 import sympy as sp
 from sympy.physics.mechanics import dynamicsymbols, LagrangesMethod
+t1 = time.perf_counter()
 t = dynamicsymbols._t
 m, J, k = sp.symbols("m J k", positive=True)
 x, th, y = dynamicsymbols("x theta y")
@@ -39,13 +55,13 @@ L = m/2*(x.diff(t)**2 + y.diff(t)**2) + J/2*th.diff(t)**2 - k**2*th**2/2
 lm = LagrangesMethod(L, [x, th, y], nonhol_coneqs=[y.diff(t) - x.diff(t)*sp.tan(th)])
 lm.form_lagranges_equations()
 rhs = lm.rhs()
-print(time.perf_counter() - t0, True)
+print(time.perf_counter() - t0, True, time.perf_counter() - t1)
 """
 
 IMPORT = """
 import time; t0 = time.perf_counter()
 import whittaker_teach
-print(time.perf_counter() - t0, True)
+print(time.perf_counter() - t0, True, 0)
 """
 
 
@@ -54,22 +70,26 @@ def _once(code):
                          check=True).stdout.split()
     if out[1] != "True":
         raise RuntimeError("a verification failed during the benchmark")
-    return float(out[0])
+    return float(out[0]), float(out[2])
 
 
 def _interleaved(codes, repeat):
-    """Median time of each code over ``repeat`` rounds, one run of each per round, so
-    that a load on the machine falls on all of them alike."""
+    """Median (total, compute-only) time of each code over ``repeat`` rounds, one run of
+    each per round, so that a load on the machine falls on all of them alike."""
     times = [[] for _ in codes]
     for _ in range(repeat):
         for i, code in enumerate(codes):
             times[i].append(_once(code))
-    return [statistics.median(t) for t in times]
+    return [(statistics.median(a for a, _ in t), statistics.median(b for _, b in t))
+            for t in times]
 
 
 def main(args):
+    if getattr(args, "scale", False):
+        return scale_main(args)
     n = args.repeat
-    ours, core, peer, imp = _interleaved([OURS, CORE, PEER, IMPORT], n)
+    (ours, ours_c), (core, core_c), (peer, peer_c), (imp, _) = _interleaved(
+        [OURS, CORE, PEER, IMPORT], n)
     print(f"fresh-process medians over {n} runs (Python {sys.version.split()[0]})")
     print(f"  whittaker_teach: sledge, every step (1.1)-(2.4) and (3.1)-(3.15) derived "
           f"and verified: {ours:7.3f} s")
@@ -79,5 +99,137 @@ def main(args):
           f"formed and solved: {peer:7.3f} s")
     print(f"  ratio (ours / peer): {ours / peer:.2f} with section 3, {core / peer:.2f} without "
           "(target <= 2)")
+    print(f"  compute only (after the imports): ours {ours_c:.3f} s with section 3, "
+          f"{core_c:.3f} s without; peer {peer_c:.3f} s; ratio {ours_c / peer_c:.2f} / "
+          f"{core_c / peer_c:.2f} (target <= 1.5)")
     print(f"  import whittaker_teach: {imp:.3f} s  (target < 0.5 s)")
     return 0
+
+
+# ----------------------------------------------------------------- scale
+def family(n, holonomic=False):
+    """The scale family with n coordinates: ``(L, coordinates, dependent)``.
+
+    Non-holonomic: g = (n - 1) // 2 dependent coordinates y_j and p = n - g
+    independent q_i; holonomic: g = 0, p = n.  Kinetic energy with the mass
+    matrix m_i + c cos^2 q_(i+1) on the diagonal (indices cyclic) and couplings
+    (b/8) cos(q_i - q_(i+1)) between neighbours (positive definite for the
+    sampled parameters), M/2 ydot_j^2 for each y_j; potential k/2 sum q_i^2;
+    constraints ydot_j = sin(q_j) qdot_(j+1) + q_(j+1) qdot_j.
+
+    >>> L, coords, dep = family(3)
+    >>> [str(c) for c in coords], len(dep)
+    (['q1(t)', 'q2(t)', 'y1(t)'], 1)
+    """
+    import sympy as sp
+    from sympy.physics.mechanics import dynamicsymbols
+    t = dynamicsymbols._t
+    g = 0 if holonomic else (n - 1) // 2
+    p = n - g
+    q = [dynamicsymbols(f"q{i}") for i in range(1, p + 1)]
+    ys = [dynamicsymbols(f"y{j}") for j in range(1, g + 1)]
+    ms = [sp.Symbol(f"m{i}", positive=True) for i in range(1, p + 1)]
+    c, b, k, M = sp.symbols("c b k M", positive=True)
+    qd = [x.diff(t) for x in q]
+    T = sp.S.Zero
+    for i in range(p):
+        T += (ms[i] + c * sp.cos(q[(i + 1) % p])**2) * qd[i]**2 / 2
+        if i + 1 < p:
+            T += b / 8 * sp.cos(q[i] - q[i + 1]) * qd[i] * qd[i + 1]
+    T += sum((M / 2 * y.diff(t)**2 for y in ys), sp.S.Zero)
+    V = k / 2 * sum(x**2 for x in q)
+    dep = {ys[j].diff(t): sp.sin(q[j]) * qd[j + 1] + q[j + 1] * qd[j] for j in range(g)}
+    return T - V, q + ys, dep
+
+
+def run_ours(n, holonomic):
+    """{"reduce": s, "verify": s, "ok": bool} for the family, in this process (CPU time
+    of the process: a load on the machine does not count)."""
+    import time
+    import whittaker_teach as wt
+    L, coords, dep = family(n, holonomic)
+    t0 = time.process_time()
+    red = wt.ChaplyginSystem(L, coords, dependent=dep).reduce(coords[0], +1)
+    red.equations
+    red.accelerations()
+    t1 = time.process_time()
+    ok = red.verify().ok
+    t2 = time.process_time()
+    return {"reduce": t1 - t0, "verify": t2 - t1, "ok": ok}
+
+
+def run_peer(n, holonomic):
+    """{"peer": s} for LagrangesMethod forming and solving the family's equations."""
+    import time
+    from sympy.physics.mechanics import LagrangesMethod
+    L, coords, dep = family(n, holonomic)
+    t0 = time.process_time()
+    lm = LagrangesMethod(L, coords, nonhol_coneqs=[k - v for k, v in dep.items()] or None)
+    lm.form_lagranges_equations()
+    lm.rhs()
+    return {"peer": time.process_time() - t0, "ok": True}
+
+
+_CHILD = """
+import json, sys, tracemalloc
+import sympy, sympy.physics.mechanics, sympy.calculus.euler, mpmath
+from whittaker_teach import bench, system, reduction, nielsen, steps, verify
+traced = {traced}
+if traced:
+    tracemalloc.start()
+out = getattr(bench, {fn!r})({n}, {hol})
+if traced:
+    out = {{"peak": tracemalloc.get_traced_memory()[1] / 2**20, "ok": out["ok"]}}
+print(json.dumps(out))
+"""
+
+
+def _child(fn, n, holonomic, traced=False):
+    code = _CHILD.format(fn=fn, n=n, hol=holonomic, traced=traced)
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.strip().splitlines()[-1]
+    return json.loads(out)
+
+
+def scale_rows(ns, holonomic, memory=True):
+    """One dict per n: times (s), ratio (reduce + verify) / peer, peak memory (MiB)."""
+    rows = []
+    for n in ns:
+        ours, peer = _child("run_ours", n, holonomic), _child("run_peer", n, holonomic)
+        row = {"n": n, **ours, **peer}
+        row["ratio"] = (row["reduce"] + row["verify"]) / row["peer"]
+        if memory:
+            row["mem"] = _child("run_ours", n, holonomic, True)["peak"]
+            row["peer_mem"] = _child("run_peer", n, holonomic, True)["peak"]
+        rows.append(row)
+    return rows
+
+
+def scale_table(rows, title):
+    """The rows as a text table (at most 100 columns)."""
+    head = (f"{title}\n{'n':>3} {'reduce s':>9} {'verify s':>9} {'peer s':>8} {'ratio':>6} "
+            f"{'verify/reduce':>13} {'peak MiB':>9} {'peer MiB':>9}  checks")
+    lines = [head]
+    for r in rows:
+        mem = f"{r['mem']:9.1f} {r['peer_mem']:9.1f}" if "mem" in r else f"{'-':>9} {'-':>9}"
+        lines.append(f"{r['n']:>3} {r['reduce']:9.2f} {r['verify']:9.2f} {r['peer']:8.2f} "
+                     f"{r['ratio']:6.1f} {r['verify'] / r['reduce']:13.2f} {mem}  "
+                     f"{'held' if r['ok'] else 'FAILED'}")
+    return "\n".join(lines)
+
+
+def scale_main(args):
+    lo, _, hi = args.n.partition("..")
+    ns = range(int(lo), int(hi or lo) + 1)
+    print("CPU seconds. reduce: build, reduce, (1.26) and q'' solved; verify: every check;\n"
+          "peer: LagrangesMethod forming and solving; ratio = (reduce + verify) / peer;\n"
+          "a fresh process each; peak memory (MiB, after the imports) by tracemalloc")
+    ok = True
+    kinds = {"both": (False, True), "nonholonomic": (False,), "holonomic": (True,)}
+    for holonomic in kinds[getattr(args, "family", "both")]:
+        rows = scale_rows(ns, holonomic, memory=not args.no_memory)
+        title = ("holonomic family" if holonomic else
+                 "non-holonomic family (g = (n - 1) // 2 constraints)")
+        print(scale_table(rows, title), flush=True)
+        ok = ok and all(r["ok"] for r in rows)
+    return 0 if ok else 1

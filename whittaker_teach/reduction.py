@@ -34,13 +34,14 @@ from __future__ import annotations
 
 import sympy as sp
 
-from .errors import ModelError, ModelTypeError
+from .coordinates import name as _name, sign_assumptions as _assume
+from .dag import substitute, tree_size
+from .errors import ModelError, ModelTypeError, guarded
 from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
                       velocity_form, whittaker_forms)
 from .rewrite import collected, rational
 from .steps import Derivation, Report, Step, eq, notation, partial
-from .system import T, _name
-from .verify import DPS, check_identity, check_zero
+from .verify import DPS, check_identity, check_zero, shared_points
 
 __all__ = ["Reduction"]
 
@@ -59,6 +60,33 @@ def _pull_speed(expr, v):
     return expr.replace(lambda e: e.is_Pow and not e.exp.is_Integer and e.base.has(v), fix)
 
 
+_NOT_QUADRATIC = ("the energy equation (1.13) cannot be solved for qdot_eps in closed form: "
+                  "Omega (1.6) is not quadratic in qdot_eps (is L quadratic in the velocities?)")
+
+
+def _velocity_coefficients(Omega, v):
+    """A2, A1, A0 with Omega = A2 v**2 + A1 v + A0, by differentiating in v and putting
+    v = 0 (collecting the powers of the velocity without expanding the rest of Omega)."""
+    d1 = Omega.diff(v)
+    d2 = d1.diff(v)
+    d3 = d2.diff(v)
+    if d3 != 0 and (tree_size(d3, 2000) > 2000 or sp.expand(d3) != 0):
+        raise ModelError(_NOT_QUADRATIC)
+    at0 = {}
+    A = [substitute(e, {v: sp.S.Zero}, at0) for e in (d2 / 2, d1, Omega)]
+    if any(a.has(sp.zoo, sp.nan, sp.oo, -sp.oo) for a in A):
+        raise ModelError(_NOT_QUADRATIC)
+    return A
+
+
+def _tidy_coefficient(e):
+    """``expand``, except powers of sums with exponents above 4, which are kept (a
+    potential (1 + x/3 + theta/5)**40 stays one term, as the user wrote it)."""
+    if any(p.base.is_Add and p.exp.is_Integer and abs(p.exp) > 4 for p in e.atoms(sp.Pow)):
+        return sp.expand(e, multinomial=False)
+    return sp.expand(e)
+
+
 class Reduction:
     """The generalized Whittaker equations of a system, with q_eps = ``coordinate``.
 
@@ -69,6 +97,7 @@ class Reduction:
     system, each with its verification; ``verify()`` re-runs the checks.
     """
 
+    @guarded("the Whittaker reduction")
     def __init__(self, system, coordinate, direction=+1):
         self.system = S = system
         self.direction = _check_direction(direction)
@@ -128,7 +157,7 @@ class Reduction:
 
     def to_public(self, expr):
         """Rewrite internal symbols (theta, thetaprime) as functions of q_eps (theta(x), ...)."""
-        return sp.sympify(expr).xreplace(self._to_public)
+        return substitute(expr, self._to_public)
 
     # ----- the operations of the paper ------------------------------------
     def _sub15(self, expr):
@@ -136,11 +165,11 @@ class Reduction:
         S, v = self.system, self._v
         sub = {S.qd[self._eps]: v}
         sub.update({S.qd[c]: v * self._qp[c] for c in self._nus})
-        return _pull_speed(expr.xreplace(sub), v)
+        return _pull_speed(substitute(expr, sub), v)
 
     def _star(self, expr):
         """Put qdot_eps = qdot_eps(q', q, h) from (1.12)."""
-        return expr.xreplace({self._v: self._vstar})
+        return substitute(expr, {self._v: self._vstar}, self._cache.setdefault("star", {}))
 
     def _D(self, f):
         """d/dq_eps of f(q', q) along a path (q'' taken as independent, as in 2.1)."""
@@ -153,19 +182,14 @@ class Reduction:
     def _derive(self):
         S, v, h = self.system, self._v, self.h
         self._Omega = self._sub15(S._Ltilde)                                    # (1.6)
-        Om = sp.expand(self._Omega)
-        A2, A1, A0 = (Om.coeff(v, k) for k in (2, 1, 0))
-        if any(a.has(v) for a in (A2, A1, A0)) or sp.expand(Om - A2*v**2 - A1*v - A0) != 0:
-            raise ModelError("the energy equation (1.13) cannot be solved for qdot_eps in closed "
-                             "form: Omega (1.6) is not quadratic in qdot_eps (is L quadratic in "
-                             "the velocities?)")
-        if A2 == 0:
+        A2, A1, A0 = _velocity_coefficients(self._Omega, v)
+        twoA2, twoK = _tidy_coefficient(2 * A2), _tidy_coefficient(2 * (h + A0))
+        if twoA2 == 0:
             raise ModelError("the energy equation (1.13) cannot be solved for qdot_eps: Omega "
                              "(1.6) has no term in qdot_eps**2 (the kinetic energy vanishes "
                              "along q_eps)")
         s = self.direction
         self._A = (A2, A1, A0)
-        twoA2, twoK = sp.expand(2 * A2), sp.expand(2 * (h + A0))
         self._vstar = s * sp.sqrt(twoK) / sp.sqrt(twoA2)                          # (1.12)
         self._Lstar = s * sp.sqrt(twoK) * sp.sqrt(twoA2) + A1                     # (1.16)
         self._Pstar = [self._star(self._sub15(P)) for P in S._dLdqdep_tilde()]
@@ -231,16 +255,19 @@ class Reduction:
         return sp.Function(_name(c), **_assume(c))(self.independent)
 
     @property
+    @guarded("the equations (1.26)")
     def equations(self):
         """The generalized Whittaker equations (1.26), expressions (= 0), one per q_nu."""
         return [self.to_public(e) for e in self._eqs]
 
     @property
+    @guarded("the Nielsen form (2.4)")
     def nielsen_equations(self):
         """The same equations in Nielsen form (2.4)."""
         from .nielsen import nielsen
         return [self.to_public(e) for e in nielsen(self)["2.4"]]
 
+    @guarded("solving (1.26) for q''")
     def accelerations(self):
         """q''_nu solved from (1.26): {theta(x).diff(x, 2): expression}."""
         return {self.to_public(k): self.to_public(v)
@@ -520,21 +547,25 @@ class Reduction:
         return Step("1.27", "Whittaker's equations ($g = 0$)", [eq(e, 0) for e in e27], chk)
 
     @property
+    @guarded("deriving the steps")
     def steps(self):
         """Every step of the paper for this system: a :class:`Derivation` of :class:`Step`."""
         if "steps" not in self._cache:
             title = (f"{self.system.name}: Whittaker reduction with $q_\\varepsilon = "
                      f"{sp.latex(self.independent)}$, $\\operatorname{{sign}}\\dot q_\\varepsilon = "
                      f"{self.direction:+d}$")
-            self._cache["steps"] = Derivation(title, self._steps())
+            with shared_points():
+                self._cache["steps"] = Derivation(title, self._steps())
         return self._cache["steps"]
 
+    @guarded("verifying the reduction")
     def verify(self):
         """Re-run every check of the derivation; a :class:`Report` of how each was shown."""
         self._cache.pop("steps", None)
         self.system._cache.pop("steps", None)
         return Report(s.check for s in self.steps if s.check)
 
+    @guarded("showing the steps")
     def show(self, latex=False):
         """Every step, tagged with the paper's number (notebook: maths; terminal: Unicode)."""
         return self.steps.show(latex=latex)
@@ -558,10 +589,6 @@ class Reduction:
         """
         from .numerics.reduced_model import simulate
         return simulate(self, q0, qp0, h, span, params, method, rtol, atol, **options)
-
-
-def _assume(c):
-    return {k: True for k in ("positive", "negative") if getattr(c, "is_" + k)}
 
 
 LSTAR = notation("L*", "L^{*}")

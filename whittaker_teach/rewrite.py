@@ -10,6 +10,8 @@ a**2 + a*b*(tan(theta)**2 + 1)
 
 import sympy as sp
 
+from .dag import expanded_terms
+
 __all__ = ["collected", "rational", "pythagoras"]
 
 #: Above this operation count, a rewrite is skipped and the expression kept as built.
@@ -19,8 +21,24 @@ OPS_LIMIT = 2000
 #: ``rational`` (cancel) is tried only below this size: its cost grows very fast with
 #: the number of roots and functions it must treat as generators.
 RATIONAL_OPS_LIMIT = 320
+#: A rewrite is skipped when ``expand`` is estimated to give more terms than this.
+SWELL_LIMIT = 50000
 #: Coefficients larger than this are left expanded rather than factored.
 FACTOR_LIMIT = 200
+
+
+def _ops_above(expr, limit):
+    """``count_ops(expr) > limit``, without counting a huge tree: a tree of more than
+    4 * limit + 1 nodes has more than ``limit`` operations (each operation joins at
+    most four nodes), and its size is counted only that far.  Also True when
+    ``expand`` would swell it beyond that (a power of a sum such as (1 + x)**40)."""
+    n, stack = 0, [expr]
+    while stack and n <= 4 * limit + 1:
+        e = stack.pop()
+        n += 1
+        stack.extend(e.args)
+    return (n > 4 * limit + 1 or expanded_terms(expr, SWELL_LIMIT) > SWELL_LIMIT
+            or sp.count_ops(expr) > limit)
 
 
 def collected(expr, symbols):
@@ -30,7 +48,7 @@ def collected(expr, symbols):
     Unlike ``sympy.collect`` it does not recurse into function arguments, so its
     cost is one ``expand`` and one ``factor`` per monomial.
     """
-    if sp.count_ops(expr) > OPS_LIMIT:
+    if _ops_above(expr, OPS_LIMIT):
         return expr
     groups = {}
     for term in sp.Add.make_args(sp.expand(expr)):
@@ -39,7 +57,7 @@ def collected(expr, symbols):
     out = []
     for mono, coeffs in groups.items():
         c = sp.Add(*coeffs)
-        if sp.count_ops(c) <= FACTOR_LIMIT:
+        if not _ops_above(c, FACTOR_LIMIT):
             c = sp.factor(c)
         out.append(c * mono)
     return pythagoras(sp.Add(*out))
@@ -62,7 +80,7 @@ def rational(expr, symbols=()):
 
     Expressions larger than ``RATIONAL_OPS_LIMIT`` operations are returned as they
     are: the rewrite is for reading, and results are correct either way."""
-    if sp.count_ops(expr) > RATIONAL_OPS_LIMIT:
+    if _ops_above(expr, RATIONAL_OPS_LIMIT):
         return expr
     num, den = sp.fraction(sp.cancel(expr))
     return collected(num, symbols) / pythagoras(sp.factor(den))

@@ -43,24 +43,41 @@ import random
 import mpmath
 import sympy as sp
 from sympy.core.function import AppliedUndef
-from sympy.physics.mechanics import dynamicsymbols
 
-from .errors import ModelError, ModelTypeError
+from .coordinates import T, name, sign_assumptions
+from .dag import max_depth, substitute
+from .errors import ModelError, ModelTypeError, guarded
+from .reduction import Reduction
 from .rewrite import collected, rational
 from .steps import Derivation, Report, Step, eq
-from .verify import DPS, check_identity, check_zero
+from .verify import DPS, check_identity, check_zero, shared_points
 
 __all__ = ["ChaplyginSystem"]
 
-T = dynamicsymbols._t
+
+#: Deepest nesting of an input expression: differentiating it twice (1.4) must stay
+#: well inside Python's recursion limit.
+MAX_DEPTH = 30
 
 
-def _name(c):
-    return c.func.__name__
+def _check_values(expr, what):
+    """Refuse what the derivation cannot treat as a real function of the coordinates:
+    infinities, NaN, complex coefficients, too deep a nesting."""
+    if expr.has(sp.nan):
+        raise ModelError(f"{what} contains nan (not a number): L and the constraints must be "
+                         "finite real expressions (1.1)")
+    if expr.has(sp.oo, sp.zoo):
+        raise ModelError(f"{what} contains an infinity (oo or zoo): L and the constraints must "
+                         "be finite real expressions (1.1)")
+    if expr.has(sp.I):
+        raise ModelError(f"{what} contains the imaginary unit I: complex coefficients are not "
+                         "allowed, L and the constraints must be real (1.1), (1.11)")
+    if max_depth(expr, MAX_DEPTH) > MAX_DEPTH:
+        raise ModelError(f"{what} is nested more than {MAX_DEPTH} levels deep: too deep to "
+                         "differentiate (1.4) reliably; write it with fewer nested functions")
 
 
-def _sign_assumptions(c):
-    return {k: True for k in ("positive", "negative") if getattr(c, "is_" + k)}
+_name, _sign_assumptions = name, sign_assumptions
 
 
 def _require_expr(value, what):
@@ -111,6 +128,7 @@ class ChaplyginSystem:
         A name for printing.
     """
 
+    @guarded("building the system")
     def __init__(self, lagrangian, coordinates, dependent=None, *, name=None):
         self.name = name or "system"
         self.coordinates = _check_coordinates(coordinates)
@@ -137,6 +155,12 @@ class ChaplyginSystem:
         self.parameters = sorted(
             set().union(self._L.free_symbols, *(p.free_symbols for p in self._phi.values()))
             - set(self._all_symbols), key=str)
+        for p in self.parameters:
+            if p.is_real is False or (p.is_real is None and p.is_complex):
+                raise ModelError(f"parameter {p} is declared complex (not real): the "
+                                 "parameters of L and of the constraints must be real (1.1); "
+                                 f"declare it with sp.Symbol({p.name!r}, real=True) or "
+                                 "positive=True")
         clash = [p for p in self.parameters if p.name in self._names]
         if clash:
             raise ModelError(f"parameter {clash[0]} has the name of a coordinate or velocity; "
@@ -173,6 +197,7 @@ class ChaplyginSystem:
             raise ModelError(f"{what} contains the symbol {clash[0]}, which has the name of a "
                              "coordinate or velocity; rename it (the derivation uses plain "
                              "symbols for q and qdot)")
+        _check_values(expr, what)
         e = expr.xreplace(self._to_internal)
         for d in e.atoms(sp.Derivative):
             raise ModelError(f"{what} contains {d.xreplace(self._to_public)}, which is not "
@@ -186,7 +211,9 @@ class ChaplyginSystem:
         if any(e.has(self.qdd[c]) for c in self.coordinates):
             raise ModelError(f"{what} contains an acceleration; L and the constraints (1.1) "
                              "depend on coordinates and velocities only")
-        return e
+        # |u| = sqrt(u**2) for the real quantities here: a form SymPy differentiates
+        # (the derivative of Abs of a symbol without assumptions is not evaluated)
+        return e.replace(sp.Abs, lambda u: sp.sqrt(u**2)) if e.has(sp.Abs) else e
 
     def _check_chaplygin(self):
         dep_q = [self.q[c] for c in self.dependent_coordinates]
@@ -208,7 +235,7 @@ class ChaplyginSystem:
 
     def to_public(self, expr):
         """Rewrite an expression of the internal symbols (x, xdot, xddot) in dynamicsymbols."""
-        return sp.sympify(expr).xreplace(self._to_public)
+        return substitute(expr, self._to_public)
 
     # ----- properties -----------------------------------------------------
     @property
@@ -260,6 +287,7 @@ class ChaplyginSystem:
             self._cache["eom"] = eqs
         return self._cache["eom"]
 
+    @guarded("deriving (1.4)")
     def equations_of_motion(self):
         """The generalized Chaplygin equations (1.4), one expression (= 0) per q_sigma."""
         return [self.to_public(e) for e in self._eom()]
@@ -286,6 +314,7 @@ class ChaplyginSystem:
                                        for a, x in self._accelerations().items()}
         return self._cache["acc_tidy"]
 
+    @guarded("solving (1.4) for the accelerations")
     def accelerations(self):
         """The accelerations solved from (1.4): {q_sigma.diff(t, 2): expression}."""
         return {self.to_public(k): self.to_public(v)
@@ -313,6 +342,7 @@ class ChaplyginSystem:
         return [sum((phi.diff(self.qd[c]) * self.qd[c] for c in self._sig), sp.S.Zero) - phi
                 for phi in self._phi.values()]
 
+    @guarded("checking (1.10)")
     def check_homogeneity(self):
         """Check (1.10): every constraint is homogeneous of degree one in the independent
         velocities.  Raises ModelError if not (there is then no energy integral 1.11)."""
@@ -339,6 +369,7 @@ class ChaplyginSystem:
             self._cache["E"] = collected(E, self._velocity_symbols())
         return self._cache["E"]
 
+    @guarded("deriving the energy integral (1.11)")
     def energy(self):
         """The energy integral (1.11): sum qdot_sigma dL~/dqdot_sigma - L~ (its value is h)."""
         self.check_homogeneity()
@@ -427,27 +458,32 @@ class ChaplyginSystem:
         return out
 
     @property
+    @guarded("deriving the time-domain steps")
     def steps(self):
         """The time-domain steps as a :class:`~whittaker_teach.steps.Derivation`."""
         if "steps" not in self._cache:
-            self._cache["steps"] = Derivation(f"{self.name}: Chaplygin equations", self._steps())
+            with shared_points():
+                self._cache["steps"] = Derivation(f"{self.name}: Chaplygin equations",
+                                                  self._steps())
         return self._cache["steps"]
 
+    @guarded("verifying the time-domain steps")
     def verify(self):
         """Re-run the time-domain checks; a :class:`~whittaker_teach.steps.Report`."""
         self._cache.pop("steps", None)
         self._cache.pop("1.10", None)
         return Report(s.check for s in self.steps if s.check)
 
+    @guarded("showing the steps")
     def show(self, latex=False):
         """Show the time-domain steps (notebook: rendered maths; terminal: Unicode)."""
         return self.steps.show(latex=latex)
 
     # ----- reduction ------------------------------------------------------
+    @guarded("the Whittaker reduction")
     def reduce(self, coordinate, direction=+1):
         """The Whittaker reduction with ``coordinate`` as q_eps, travelled with
         sign(qdot_eps) = ``direction``: a :class:`~whittaker_teach.reduction.Reduction`."""
-        from .reduction import Reduction
         return Reduction(self, coordinate, direction)
 
     def __repr__(self):

@@ -17,12 +17,15 @@ Check('demo', holds=True, method='numeric', points=6, max_residual<1e-30)
 from __future__ import annotations
 
 import random
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import mpmath
 import sympy as sp
 
-__all__ = ["Check", "check_identity", "check_zero", "DPS", "TOLERANCE"]
+from .dag import expanded_terms, tree_size
+
+__all__ = ["Check", "check_identity", "check_zero", "evaluate", "shared_points", "DPS",
+           "TOLERANCE"]
 
 #: Working precision (decimal digits) of the numeric checks.
 DPS = 40
@@ -30,9 +33,11 @@ DPS = 40
 TOLERANCE = 1e-25
 #: Number of random admissible points of a numeric check.
 POINTS = 6
-#: Above this operation count, the exact attempt is skipped (it would cost more
-#: than the numeric check).
-EXACT_OPS_LIMIT = 250
+#: Above this number of nodes (``tree_size``), the exact attempt is skipped: it
+#: would cost more than the numeric check.
+EXACT_SIZE_LIMIT = 450
+#: ... and so is an ``expand`` estimated to produce more terms than this.
+EXACT_TERMS_LIMIT = 200
 
 
 @dataclass(frozen=True)
@@ -51,6 +56,11 @@ class Check:
     detail: str
     points: int = 0
     max_residual: float = 0.0
+    #: the expressions compared, ``lhs[i] == rhs[i]``, and the sampler of the points:
+    #: what was checked, so that a display can be compared with it
+    lhs: tuple = field(default=(), repr=False, compare=False)
+    rhs: tuple = field(default=(), repr=False, compare=False)
+    sample: object = field(default=None, repr=False, compare=False)
 
     @property
     def status(self) -> str:
@@ -88,34 +98,187 @@ def _exactly_zero(diff):
     """Return the name of the rewrite that shows ``diff == 0``, or None."""
     if diff == 0:
         return "identical as built"
-    if sp.count_ops(diff) > EXACT_OPS_LIMIT:
+    if (tree_size(diff, EXACT_SIZE_LIMIT) > EXACT_SIZE_LIMIT
+            or expanded_terms(diff, EXACT_TERMS_LIMIT) > EXACT_TERMS_LIMIT):
         return None
     if sp.expand(diff) == 0:
         return "expand"
     return None
 
 
+class Unevaluable(Exception):
+    """An expression the numeric checks cannot evaluate (an unknown function)."""
+
+
+_FAIL = object()
+_EVAL_ERRORS = (ZeroDivisionError, ValueError, OverflowError, TypeError)
+
+
+def _mpmath_function(cls, nargs):
+    """The mpmath function of a SymPy function class (sin -> mpmath.sin), made once."""
+    key = (cls, nargs)
+    if key not in _FUNCTIONS:
+        fn = _KNOWN.get(cls.__name__)
+        if fn is None:
+            dummies = sp.symbols(f"_a0:{nargs}", cls=sp.Dummy)
+            try:
+                fn = sp.lambdify(dummies, cls(*dummies), modules="mpmath", docstring_limit=0)
+            except Exception as err:      # the printer knows no mpmath form for it
+                raise Unevaluable(f"{cls.__name__} has no mpmath form ({type(err).__name__})")
+        _FUNCTIONS[key] = fn
+    return _FUNCTIONS[key]
+
+
+_FUNCTIONS = {}
+_KNOWN = {name: getattr(mpmath, name) for name in (
+    "sin", "cos", "tan", "cot", "sec", "csc", "exp", "asin", "acos", "atan", "sinh", "cosh",
+    "tanh", "coth", "sech", "csch", "asinh", "acosh", "atanh", "sign")}
+_KNOWN.update(Abs=abs, atan2=mpmath.atan2, re=mpmath.re, im=mpmath.im,
+              conjugate=mpmath.conj, log=mpmath.log)
+
+
+def _number(e):
+    if e.is_Integer:
+        return mpmath.mpf(int(e))
+    if e.is_Rational:
+        return mpmath.mpf(int(e.p)) / int(e.q)
+    if e.is_Float:
+        return mpmath.mpf(e._mpf_)
+    if e is sp.pi:
+        return +mpmath.pi
+    if e is sp.E:
+        return +mpmath.e
+    if e is sp.I:
+        return mpmath.mpc(0, 1)
+    if e in (sp.oo, -sp.oo, sp.zoo, sp.nan):
+        raise ValueError(f"{e} is not a finite number")
+    re_, im_ = sp.N(e, DPS + 5).as_real_imag()
+    return mpmath.mpc(re_._mpf_, im_._mpf_) if im_ else mpmath.mpf(re_._mpf_)
+
+
+def evaluate(expr, memo):
+    """The value of ``expr`` in mpmath, every subexpression looked up in (and added to)
+    ``memo``, a dict that starts with the values of the free symbols.
+
+    The memo makes a common subexpression cost one evaluation, within an expression,
+    across the expressions of a check and across checks at the same point: the
+    shared form of common-subexpression elimination, without generating code.
+    Raises ZeroDivisionError, ValueError, OverflowError (a pole, a domain error),
+    KeyError (a symbol without a value) or :class:`Unevaluable`.
+
+    >>> x = sp.Symbol("x")
+    >>> with mpmath.workdps(30):
+    ...     print(evaluate(sp.sin(x)**2 + sp.cos(x)**2, {x: mpmath.mpf(1)/3}))
+    1.0
+    """
+    val = memo.get(expr)
+    if val is None:
+        val = memo[expr] = _FAIL
+        try:
+            val = _compute(expr, memo)
+        except RecursionError:
+            raise Unevaluable("an expression too deeply nested to evaluate")
+        memo[expr] = val
+    elif val is _FAIL:
+        raise ValueError("this subexpression failed to evaluate at this point")
+    return val
+
+
+def _compute(e, memo):
+    if e.is_Add:
+        out = 0
+        for a in e.args:
+            out += evaluate(a, memo)
+        return out
+    if e.is_Mul:
+        out = 1
+        for a in e.args:
+            out *= evaluate(a, memo)
+        return out
+    if e.is_Pow:
+        b, x = evaluate(e.base, memo), e.exp
+        if x.is_Integer:
+            return b ** int(x)
+        if x.is_Rational and x.q == 2:
+            return mpmath.sqrt(b) ** int(x.p)
+        return mpmath.power(b, evaluate(x, memo))
+    if e.is_Symbol:
+        raise KeyError(f"no sample value for {e}")
+    if e.is_Number or e.is_NumberSymbol or e is sp.I or e.is_number and not e.args:
+        return _number(e)
+    if isinstance(e, sp.Function):
+        args = [evaluate(a, memo) for a in e.args]
+        return _mpmath_function(e.func, len(args))(*args)
+    if e.is_number:
+        return _number(e)
+    raise Unevaluable(f"cannot evaluate {type(e).__name__} numerically")
+
+
+class _Points:
+    """Random admissible points of one sampler and seed, drawn on demand, each with
+    the memo of the values computed there (shared by every check that uses them)."""
+
+    def __init__(self, sample, seed):
+        self.sample, self.rng, self.points = sample, random.Random(seed), []
+
+    def __getitem__(self, i):
+        while len(self.points) <= i:
+            pt = self.sample(self.rng)
+            self.points.append({s: mpmath.mpf(v) if isinstance(v, (int, float)) else v
+                                for s, v in pt.items()})
+        return self.points[i]
+
+
+_SHARED = []
+
+
+class shared_points:
+    """Within this context, checks with the same sampler and seed share their random
+    points and the values computed at them (a derivation's checks overlap a lot).
+
+    >>> x = sp.Symbol("x")
+    >>> with shared_points():
+    ...     a = check_zero("a", "", sp.sin(x)**2 + sp.cos(x)**2 - 1, lambda r: {x: 0.5})
+    """
+
+    def __enter__(self):
+        _SHARED.append({} if not _SHARED else _SHARED[-1])
+        return self
+
+    def __exit__(self, *exc):
+        _SHARED.pop()
+        return False
+
+
+def _points(sample, seed):
+    if not _SHARED:
+        return _Points(sample, seed)
+    table = _SHARED[-1]
+    try:
+        key = (sample, seed)
+        hash(key)
+    except TypeError:
+        return _Points(sample, seed)
+    if key not in table:
+        table[key] = _Points(sample, seed)
+    return table[key]
+
+
 def _numeric(lhs, rhs, sample, points, seed):
     """Largest relative residual of lhs - rhs over random points, and the count."""
-    symbols = sorted(set().union(*(e.free_symbols for e in lhs + rhs)), key=str)
-    fn = sp.lambdify(symbols, [*lhs, *rhs], modules="mpmath", docstring_limit=0)
-    rng = random.Random(seed)
+    pts = _points(sample, seed)
     worst, used, attempts = 0.0, 0, 0
-    n = len(lhs)
     with mpmath.workdps(DPS):
         while used < points and attempts < 4 * points:
+            memo = pts[attempts]
             attempts += 1
-            point = sample(rng)
-            missing = [s for s in symbols if s not in point]
-            if missing:
-                raise KeyError(f"no sample value for {missing}")
             try:
-                vals = fn(*[mpmath.mpf(point[s]) for s in symbols])
-            except (ZeroDivisionError, ValueError, OverflowError):
+                vals = [(evaluate(a, memo), evaluate(b, memo)) for a, b in zip(lhs, rhs)]
+            except (ZeroDivisionError, ValueError, OverflowError, TypeError):
                 continue
-            if not all(mpmath.isfinite(v) for v in vals):
+            if not all(mpmath.isfinite(a) and mpmath.isfinite(b) for a, b in vals):
                 continue
-            for a, b in zip(vals[:n], vals[n:]):
+            for a, b in vals:
                 scale = max(1, abs(a), abs(b))
                 worst = max(worst, float(abs(a - b) / scale))
             used += 1
@@ -128,18 +291,25 @@ def check_identity(label, claim, lhs, rhs, sample, *, exact=True, points=POINTS,
     ``sample(rng)`` returns a dict {Symbol: float} of one random admissible
     point; it must give a value for every free symbol.
     """
-    lhs, rhs = _as_list(lhs), _as_list(rhs)
+    lhs = [sp.sympify(a) for a in _as_list(lhs)]
+    rhs = [sp.sympify(b) for b in _as_list(rhs)]
+    what = dict(lhs=tuple(lhs), rhs=tuple(rhs), sample=sample)
     if len(lhs) != len(rhs):
-        return Check(label, claim, False, "exact", f"{len(lhs)} left sides, {len(rhs)} right sides")
+        return Check(label, claim, False, "exact", f"{len(lhs)} left sides, {len(rhs)} right sides",
+                     **what)
     if exact:
-        ways = [_exactly_zero(sp.sympify(a - b)) for a, b in zip(lhs, rhs)]
+        ways = [_exactly_zero(a - b) for a, b in zip(lhs, rhs)]
         if all(ways):
-            return Check(label, claim, True, "exact", ", ".join(sorted(set(ways))))
-    worst, used = _numeric(lhs, rhs, sample, points, seed)
+            return Check(label, claim, True, "exact", ", ".join(sorted(set(ways))), **what)
+    try:
+        worst, used = _numeric(lhs, rhs, sample, points, seed)
+    except Unevaluable as err:
+        return Check(label, claim, None, "unverified", f"not evaluable numerically: {err}", **what)
     detail = f"mpmath at {DPS} digits"
     if used == 0:
-        return Check(label, claim, None, "unverified", "no admissible point could be evaluated")
-    return Check(label, claim, worst <= TOLERANCE, "numeric", detail, used, worst)
+        return Check(label, claim, None, "unverified", "no admissible point could be evaluated",
+                     **what)
+    return Check(label, claim, worst <= TOLERANCE, "numeric", detail, used, worst, **what)
 
 
 def check_zero(label, claim, expr, sample, **kw):

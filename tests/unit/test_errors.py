@@ -129,3 +129,71 @@ def test_parameter_clash():
 def test_unknown_example():
     with pytest.raises(ModelError, match="no built-in example 'sled'"):
         wt.examples.get("sled")
+
+
+# ----- issue 12: complex, infinite, deep, positively homogeneous input ---------------
+@pytest.mark.parametrize("bad_L, fragment", [
+    (L + sp.I * J * thd**2, r"L contains the imaginary unit I: complex coefficients"),
+    (L + sp.oo * th, r"contains an infinity \(oo or zoo\)"),
+    (L + sp.zoo * th, r"contains an infinity"),
+    (L + sp.nan * th, r"contains nan \(not a number\)"),
+    (L.subs(J, sp.Symbol("J", complex=True)), r"parameter J is declared complex \(not real\)"),
+    (L.subs(J, sp.Symbol("J", imaginary=True)), r"parameter J is declared complex"),
+])
+def test_complex_infinite_nan(bad_L, fragment):
+    with pytest.raises(ModelError, match=fragment):
+        build(L=bad_L)
+
+
+def test_complex_constraint():
+    with pytest.raises(ModelError, match=r"constraint ydot = phi contains the imaginary unit I"):
+        build(dep={yd: sp.I * xd * sp.tan(th)})
+
+
+def test_too_deep():
+    e = th
+    for _ in range(60):
+        e = sp.sin(e)
+    with pytest.raises(ModelError, match=r"nested more than \d+ levels deep: too deep to "
+                       "differentiate"):
+        build(L=L - e)
+
+
+def test_moderately_deep_works():
+    e = th
+    for _ in range(12):
+        e = sp.sin(e)
+    assert build(L=L - e).reduce(x).verify().ok
+
+
+@pytest.mark.parametrize("direction", [1, -1])
+def test_positively_homogeneous_abs(direction):
+    """|xdot| tan(theta) is positively homogeneous of degree one: (1.10) holds (Euler's
+    relation), so both directions reduce, with qdot* = direction * tan(theta)."""
+    s = build(dep={yd: sp.Abs(xd) * sp.tan(th)})
+    red = s.reduce(x, direction)
+    assert red.verify().ok
+    (rate,) = red.constraint_rates.values()
+    assert sp.expand(rate - direction * sp.tan(red.coordinates[0])) == 0
+
+
+def test_no_raw_library_exception():
+    """An error inside SymPy reached through the public API becomes a ModelError."""
+    from whittaker_teach.errors import guarded
+
+    @guarded("the demo")
+    def f():
+        return sp.Poly(sp.sin(x) + 1, sp.sin(x), sp.sin(x)).degree(th)
+    with pytest.raises(ModelError, match="the demo failed inside the symbolic library"):
+        f()
+
+
+def test_large_potential_is_not_expanded():
+    """A potential that is a power of a sum stays unexpanded in (1.12) and L*, and the
+    derivation and its checks do not expand it (the issue's (1 + x/3 + theta/5)**40)."""
+    V = (1 + x / 3 + th / 5)**40
+    s = build(L=m / 2 * (xd**2 + yd**2) + J / 2 * thd**2 - V)
+    red = s.reduce(x)
+    assert any(p.exp == 40 for p in red.L_star.atoms(sp.Pow))
+    assert red.verify().ok
+    assert all(sp.Add.make_args(e).__len__() < 100 for e in red.equations)

@@ -113,21 +113,28 @@ def section3_steps(red):
                    r"\theta)$ is constant along (1.26)", [eq(C**2, integral)], check_zero(
         "3.11a", "$d/dx$ of the integral vanishes on the solutions of (1.26)",
         red._D(integral).xreplace({thpp: qpp}), smp)))
+    # (3.12)-(3.14) for the direction s: the equation shown is the one checked (for
+    # s = -1, xdot = -C cos theta; the paper, with s = +1, prints C cos theta)
     xdot_c = red._vstar.xreplace({thp: F})
-    st.append(Step("3.12", "(3.11) in (3.5)", [eq(xd, C * sp.cos(th))], check_identity(
-        "3.12", "xdot from (1.12) on the first integral equals C cos theta",
-        xdot_c, s * C * sp.cos(th), smp_c)))
-    st.append(Step("3.13", "by (3.2)", [eq(yd, C * sp.sin(th))], check_identity(
-        "3.13", "xdot tan theta = C sin theta", (s * C * sp.cos(th)) * sp.tan(th),
-        s * C * sp.sin(th), smp_c)))
-    thdot = F * s * C * sp.cos(th)
+    xdot_shown = s * C * sp.cos(th)
+    minus = "" if s > 0 else "-"
+    st.append(Step("3.12", "(3.11) in (3.5)" + ("" if s > 0 else r"; $x$ decreases, so the sign "
+                   "is minus"), [eq(xd, xdot_shown)], check_identity(
+        "3.12", rf"$\dot x$ from (1.12) on the first integral equals ${minus}C\cos\theta$",
+        xdot_c, xdot_shown, smp_c)))
+    ydot_shown = s * C * sp.sin(th)
+    st.append(Step("3.13", "by (3.2)", [eq(yd, ydot_shown)], check_identity(
+        "3.13", rf"$\dot x\tan\theta = {minus}C\sin\theta$", xdot_shown * sp.tan(th),
+        ydot_shown, smp_c)))
+    thdot = F * xdot_shown
+    thdd = S.qdd[S.coordinates[1]]
     st.append(Step("3.14", r"$\dot\theta = \theta'\dot x$ (the OCR prints $\theta$ for "
-                   r"$\dot\theta$), and its derivative", [eq(thd, thdot), eq(S.qdd[S.coordinates[1]],
-                                                                   -k**2 / J * th)],
+                   r"$\dot\theta$), and its derivative", [eq(thd, thdot), eq(thdd, -k**2 / J * th)],
                    check_identity(
-        "3.14", "d(thetadot)/dtheta * thetadot = -k^2 theta / J, as (1.4) gives in time",
-        [thdot.diff(th) * thdot, S._accelerations()[S.qdd[S.coordinates[1]]]],
-        [-k**2 * th / J, -k**2 * th / J], smp_c)))
+        "3.14", r"$\dot\theta = \theta'\dot x$ on (3.11), and $\frac{d\dot\theta}{d\theta}\,"
+        r"\dot\theta = -k^2\theta/J$, as (1.4) gives in time",
+        [F * xdot_c, thdot.diff(th) * thdot, S._accelerations()[thdd]],
+        [thdot, -k**2 * th / J, -k**2 * th / J], smp_c)))
     sol = a * sp.cos(k / sp.sqrt(J) * t + phi)
     st.append(Step("3.15", "the motion in time; $h = mC^2/2 + k^2a^2/2$",
                    [eq(th, sol), eq(h, m * C**2 / 2 + k**2 * a**2 / 2)], check_zero(

@@ -1,0 +1,23 @@
+"""The scale benchmark runs (n = 2..4) and prints its table; times are printed, not asserted."""
+
+from whittaker_teach import bench
+
+
+def test_scale_benchmark_runs_and_prints(capsys):
+    for holonomic in (False, True):
+        rows = bench.scale_rows(range(2, 5), holonomic, memory=holonomic)
+        assert [r["n"] for r in rows] == [2, 3, 4]
+        assert all(r["ok"] for r in rows)          # every check of the derivation held
+        table = bench.scale_table(rows, "holonomic family" if holonomic
+                                  else "non-holonomic family")
+        with capsys.disabled():          # the figures go to the CI log
+            print("\n" + table)
+        assert len(table.splitlines()) == 5 and "verify/reduce" in table
+        assert all(r["reduce"] > 0 and r["verify"] > 0 and r["peer"] > 0 for r in rows)
+
+
+def test_family_shapes():
+    L, coords, dep = bench.family(5)
+    assert len(coords) == 5 and len(dep) == 2
+    L, coords, dep = bench.family(4, holonomic=True)
+    assert len(coords) == 4 and dep == {}
