@@ -23,7 +23,8 @@ from __future__ import annotations
 
 import sympy as sp
 
-from .rewrite import collected, pythagoras
+from .dag import tree_size
+from .rewrite import RATIONAL_OPS_LIMIT, _ops_above, collected, pythagoras
 from .verify import check_identity
 
 __all__ = ["TotalD", "powers_combined", "tidy", "evaluate", "check_reading", "velocity_form",
@@ -56,10 +57,16 @@ class TotalD(sp.Function):
         return f"d/d{self.args[1]}({printer._print(self.args[0])})"
 
 
+#: bases larger than this (tree nodes) are not expanded by :func:`powers_combined`
+BASE_EXPAND_LIMIT = 200
+
+
 def powers_combined(expr):
     """In every product, powers of the same base (equal after ``expand``) are merged:
     sqrt(A)*A -> A**(3/2).  Exact: x**a * x**b = x**(a + b) for every base with the
-    principal branch.
+    principal branch.  Only bases of at most ``BASE_EXPAND_LIMIT`` nodes are
+    expanded to compare them (larger ones are compared as written): the cost stays
+    bounded on a large system.
 
     >>> a, b = sp.symbols("a b")
     >>> A = a**2 + b
@@ -72,7 +79,8 @@ def powers_combined(expr):
         groups, order = {}, []
         for f in sp.Mul.make_args(m):
             b, e = f.as_base_exp()
-            key = sp.expand(b) if isinstance(b, sp.Add) else b
+            small = isinstance(b, sp.Add) and tree_size(b, BASE_EXPAND_LIMIT) <= BASE_EXPAND_LIMIT
+            key = sp.expand(b) if small else b
             if key not in groups:
                 order.append(key)
                 groups[key] = [b, sp.S.Zero]
@@ -167,11 +175,17 @@ def whittaker_forms(red):
 
 def cleared_forms(red):
     """(3.10): each q''_nu = N/D of (1.26) cleared of denominators, D q''_nu - N,
-    collected in q''_nu and the q'."""
+    collected in q''_nu and the q'.
+
+    A q''_nu larger than ``rewrite.RATIONAL_OPS_LIMIT`` operations has no one-fraction
+    reading form (``rewrite.rational`` leaves it as it is) and gets no cleared form:
+    the list then has fewer entries than q_nu, and the step says so."""
     out = []
     acc = red._tidy_accelerations()
     for c in red._nus:
         a = red._qpp[c]
+        if _ops_above(acc[a], RATIONAL_OPS_LIMIT):
+            continue
         num, den = sp.fraction(sp.together(acc[a]))
         out.append(powers_combined(collected(den * a - num, [a] + _primes(red))))
     return out

@@ -508,8 +508,11 @@ class Reduction:
         tidy_acc = self._tidy_accelerations()
         cleared = cleared_forms(self)
         on = dict(tidy_acc)
-        st.append(Step("1.26b", r"$q''_\nu$ solved from (1.26), and (1.26) cleared of "
-                       "denominators", lambda: [eq(k, v) for k, v in tidy_acc.items()]
+        title = r"$q''_\nu$ solved from (1.26), and (1.26) cleared of denominators"
+        if len(cleared) < len(nus):
+            title += (" (where $q''_\\nu$ is small enough to read as one fraction; "
+                      "the others are too large for a cleared form)")
+        st.append(Step("1.26b", title, lambda: [eq(k, v) for k, v in tidy_acc.items()]
                        + [eq(c, 0) for c in cleared], check_zero(
                            "1.26b", r"(1.26) and the cleared form vanish at the $q''_\nu$ shown",
                            [e.xreplace(on) for e in self._eqs]
