@@ -63,7 +63,7 @@ lite-fetch:
 
 # ---------------------------------------------------------------- the book
 book: setup
-	@$(MAKE) --no-print-directory site derive
+	@$(MAKE) --no-print-directory site pdf-after-site derive
 
 # The Jupyter Book site, then the JupyterLite site inside it (_build/html/lite).
 site: setup
