@@ -126,11 +126,14 @@ def test_show_renders_maths_in_the_pyodide_kernel(monkeypatch):
     shown = []
     Interpreter = type("Interpreter", (), {"__module__": "pyodide_kernel.interpreter"})
     Terminal = type("TerminalInteractiveShell", (), {"__module__": "IPython.terminal"})
-    monkeypatch.setattr(IPython.display, "display", lambda obj: shown.append(type(obj).__name__))
+    def display(obj, raw=False):
+        shown.append(sorted(obj) if raw else type(obj).__name__)
+    monkeypatch.setattr(IPython.display, "display", display)
     for shell, in_notebook in ((Interpreter(), True), (Terminal(), False), (None, False)):
         monkeypatch.setattr(IPython, "get_ipython", lambda s=shell: s)
         assert render._in_notebook() is in_notebook
     monkeypatch.setattr(IPython, "get_ipython", lambda: Interpreter())
     import whittaker_teach as wt
     wt.examples.sledge().steps.only("1.1").show()
-    assert shown == ["Markdown", "Markdown", "Math"]
+    captions = ["text/html", "text/markdown", "text/plain"]
+    assert shown == [captions, captions, "Math"]     # title, the step's caption, (1.1)
