@@ -17,6 +17,17 @@ def sledge_red(sledge):
     return sledge.reduce("x", +1)
 
 
+# the short names the numerics tests use for the same two objects
+@pytest.fixture(scope="session")
+def S(sledge):
+    return sledge
+
+
+@pytest.fixture(scope="session")
+def red(sledge_red):
+    return sledge_red
+
+
 def numerically_zero(expr, values, tol=1e-25):
     """|expr| at a point (dict), evaluated at 40 digits, is below tol."""
     val = sp.N(expr.xreplace(values), 40)

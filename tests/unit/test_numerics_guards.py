@@ -13,16 +13,6 @@ from whittaker_teach.numerics.scene import scene
 P = {"m": 1.0, "J": 1.0, "k": 1.0}
 
 
-@pytest.fixture(scope="module")
-def S():
-    return wt.examples.sledge()
-
-
-@pytest.fixture(scope="module")
-def red(S):
-    return S.reduce("x", +1)
-
-
 def _exact_turns(ex, T):
     """Zeros of xdot = C cos(a cos psi): a cos psi = +-pi/2, counted over [0, T]."""
     psi0, psi1 = ex.phase(0.0), ex.phase(T)

@@ -15,16 +15,6 @@ P = {"m": 1.0, "J": 1.0, "k": 1.0}
 
 
 @pytest.fixture(scope="module")
-def S():
-    return wt.examples.sledge()
-
-
-@pytest.fixture(scope="module")
-def red(S):
-    return S.reduce("x", +1)
-
-
-@pytest.fixture(scope="module")
 def ex():
     return wt.examples.sledge_exact(P, a=0.6, phi=0.3, C=1.2)
 
