@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from .dag import tree_size
+from .dag import expanded_terms, tree_size
 from .rewrite import RATIONAL_OPS_LIMIT, _ops_above, collected, pythagoras
 from .verify import check_identity
 
@@ -126,10 +126,23 @@ def _primes(red):
     return list(red._qp.values())
 
 
+#: a polynomial of more terms than this (estimated before expanding) is not factored
+FACTOR_TERMS_LIMIT = 60
+
+
+def _factored(e):
+    """``factor(expand(e))`` for reading, when ``e`` expands to at most
+    ``FACTOR_TERMS_LIMIT`` terms; otherwise ``e`` as it is (factoring a large
+    multivariate polynomial can take minutes, and the form is only for reading)."""
+    if _ops_above(e, RATIONAL_OPS_LIMIT) or expanded_terms(e, FACTOR_TERMS_LIMIT) > FACTOR_TERMS_LIMIT:
+        return e
+    return sp.factor(sp.expand(e))
+
+
 def velocity_form(red):
     """(1.12): qdot_eps = s sqrt(2 (h + A0) / (2 A2)), numerator and denominator tidied."""
     A2, _, A0 = red._A
-    num = sp.factor(sp.expand(2 * (red.h + A0)))
+    num = _factored(2 * (red.h + A0))
     den = tidy(sp.expand(2 * A2), _primes(red))
     return red.direction * sp.sqrt(num) / sp.sqrt(den)
 
@@ -138,7 +151,7 @@ def lstar_form(red):
     """(1.16)/(3.7): L* = s sqrt(2 (h + A0)) sqrt(2 A2) + A1, each part tidied."""
     A2, A1, A0 = red._A
     qp = _primes(red)
-    return (red.direction * sp.sqrt(sp.factor(sp.expand(2 * (red.h + A0))))
+    return (red.direction * sp.sqrt(_factored(2 * (red.h + A0)))
             * sp.sqrt(tidy(sp.expand(2 * A2), qp)) + tidy(A1, qp))
 
 
