@@ -87,3 +87,19 @@ def test_total_derivative_prints_d_dx():
     x, f = sp.symbols("x f")
     assert sp.latex(R.TotalD(f, x)) == r"\frac{d}{d x}\left(f\right)"
     assert "d/dx" in sp.pretty(R.TotalD(f, x), use_unicode=True)
+
+
+def test_powers_combined_leaves_a_base_holding_a_high_power_unexpanded(monkeypatch):
+    """A base that is small as written but huge when expanded, y + (1 + x/3)**40, is
+    compared as written: expanding it is what once made the Nielsen reading forms of
+    a system with the issue's potential (1 + x/3 + theta/5)**40 take 90 s."""
+    a, x, y = sp.symbols("a x y")
+    A = y + (1 + x / 3)**40
+    expanded, real = [], sp.expand
+    monkeypatch.setattr(sp, "expand", lambda e, *args, **kw: expanded.append(e) or real(e, *args, **kw))
+    out = R.powers_combined(sp.sqrt(A) * sp.Mul(A, 1, evaluate=False) * a)
+    assert out == a * A**sp.Rational(3, 2)
+    assert A not in expanded
+    small = a + y
+    R.powers_combined(sp.sqrt(small) * sp.Mul(small, 1, evaluate=False) * x)
+    assert small in expanded                  # small bases are still compared expanded
