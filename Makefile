@@ -21,8 +21,12 @@ SHELL := /bin/bash
 
 PYTHON ?= python
 MATHJAX_VERSION ?= 3.2.2
-# extra arguments for the unit/integration pytest run, e.g. PYTEST_ARGS="-n auto"
+# extra arguments for the unit/integration pytest run, e.g. PYTEST_ARGS="-x"
 PYTEST_ARGS ?=
+# pytest-xdist workers for the unit, nbval and browser runs: the CPUs this process
+# may use, at most 4 (JOBS=1 runs each in one process, as plain pytest would)
+JOBS ?= $(shell $(PYTHON) -c 'import os; print(min(4, len(os.sched_getaffinity(0))))' 2>/dev/null || echo 1)
+XDIST = $(if $(filter-out 1,$(JOBS)),-n $(JOBS))
 
 # `jupyter-book` through the current interpreter (no reliance on a console
 # script being on PATH, e.g. pyenv shims before a rehash)
@@ -109,14 +113,14 @@ unit: setup
 	  else echo "unit: no tests in $$d yet, skipped"; fi; \
 	done; \
 	if [ -n "$$dirs" ]; then \
-	  echo "PYTHONHASHSEED=0 $(PYTHON) -m pytest$$dirs -q -m 'not slow' $(PYTEST_ARGS)"; \
-	  PYTHONHASHSEED=0 $(PYTHON) -m pytest $$dirs -q -m "not slow" $(PYTEST_ARGS); \
+	  echo "PYTHONHASHSEED=0 $(PYTHON) -m pytest$$dirs -q -m 'not slow' $(XDIST) $(PYTEST_ARGS)"; \
+	  PYTHONHASHSEED=0 $(PYTHON) -m pytest $$dirs -q -m "not slow" $(XDIST) $(PYTEST_ARGS); \
 	fi
 
 # The tests marked slow (minutes each: a 1e5-period run under tracemalloc, the quick
 # study run twice); not part of `make test`.
 slow: setup
-	PYTHONHASHSEED=0 $(PYTHON) -m pytest tests/unit tests/integration -q -m slow $(PYTEST_ARGS)
+	PYTHONHASHSEED=0 $(PYTHON) -m pytest tests/unit tests/integration -q -m slow $(XDIST) $(PYTEST_ARGS)
 
 doctest: setup
 	@if [ -d whittaker_teach ] && grep -rqs --include='*.py' '>>>' whittaker_teach; then \
@@ -125,7 +129,8 @@ doctest: setup
 	else echo "doctest: no doctests in whittaker_teach yet, skipped"; fi
 
 # Stored notebook outputs must match a fresh run (_build and checkpoints are
-# excluded by norecursedirs in pyproject.toml).
+# excluded by norecursedirs in pyproject.toml); --dist loadfile: every cell of a
+# notebook in one worker's kernel, in order.
 nbval: setup
 	@dirs=""; \
 	for d in $(NOTEBOOK_DIRS); do \
@@ -134,8 +139,8 @@ nbval: setup
 	  else echo "nbval: no notebooks in $$d, skipped"; fi; \
 	done; \
 	if [ -n "$$dirs" ]; then \
-	  echo "PYTHONHASHSEED=0 $(PYTHON) -m pytest --nbval --nbval-current-env$$dirs -p no:randomly -q"; \
-	  PYTHONHASHSEED=0 $(PYTHON) -m pytest --nbval --nbval-current-env $$dirs -p no:randomly -q; \
+	  echo "PYTHONHASHSEED=0 $(PYTHON) -m pytest --nbval --nbval-current-env$$dirs -p no:randomly -q $(XDIST) $(if $(XDIST),--dist loadfile)"; \
+	  PYTHONHASHSEED=0 $(PYTHON) -m pytest --nbval --nbval-current-env $$dirs -p no:randomly -q $(XDIST) $(if $(XDIST),--dist loadfile); \
 	fi
 
 # (in `make test`, after `site`: the PDF of the site just built)
@@ -144,8 +149,9 @@ pdf-after-site: setup sysdeps
 
 # Headless Chromium against the site built into _build/html by `make site`,
 # and the PDF of `make pdf`: missing Chromium/poppler, site or PDF fail.
+# one test per page load (tests/book/test_site.py), spread over the workers.
 browser: setup sysdeps
-	WT_REQUIRE_SITE=1 WT_REQUIRE_PDF=1 $(PYTHON) -m pytest tests/book -q
+	WT_REQUIRE_SITE=1 WT_REQUIRE_PDF=1 $(PYTHON) -m pytest tests/book -q $(XDIST)
 
 # ---------------------------------------------------------------- notebooks
 notebooks: setup

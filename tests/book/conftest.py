@@ -1,4 +1,5 @@
-"""Print what the browser test looked at (written by test_site.py)."""
+"""Print what the browser test looked at (written by test_site.py: one summary file,
+or one per pytest-xdist worker, added up here)."""
 import json
 import os
 import time
@@ -14,10 +15,13 @@ def pytest_sessionstart(session):
 
 def pytest_terminal_summary(terminalreporter):
     shots = Path(os.environ.get("WT_SCREENSHOT_DIR", ROOT / "_build" / "screenshots"))
-    path = shots / "summary.json"
-    if not path.is_file() or path.stat().st_mtime < _started[0]:
+    paths = [p for p in sorted(shots.glob("summary*.json")) if p.stat().st_mtime >= _started[0]]
+    if not paths:
         return
-    s = json.loads(path.read_text(encoding="utf-8"))
+    parts = [json.loads(p.read_text(encoding="utf-8")) for p in paths]
+    s = {"pages": sum(p["pages"] for p in parts),
+         "widths": sorted({w for p in parts for w in p["widths"]}),
+         **{k: sum(p[k] for p in parts) for k in ("page_loads", "displays", "inline", "text_outputs")}}
     terminalreporter.write_line(
         f"browser: {s['pages']} pages at {' and '.join(map(str, s['widths']))} px "
         f"({s['page_loads']} page loads): {s['displays']} display and {s['inline']} in-line "

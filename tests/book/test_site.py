@@ -27,8 +27,9 @@ Playwright's sync API; ``playwright install`` is never needed. Checks:
 
 A full-page screenshot of every page at both widths is written to
 ``_build/screenshots/<page>-<width>.png`` for a person to look at, and the
-counts of what was checked to ``_build/screenshots/summary.json`` (printed at
-the end of the run).
+counts of what was checked to ``_build/screenshots/summary.json`` (one
+``summary-<worker>.json`` per pytest-xdist worker: ``conftest.py`` adds them up
+and prints them at the end of the run).
 
 Without ``_build/html/index.html`` the module is skipped, unless
 ``WT_REQUIRE_SITE=1`` (set by the Makefile) turns that into a failure; with
@@ -332,7 +333,9 @@ def _write_summary():
             + len(v.layout["rawTex"]) + bool(v.layout["pageOverflow"]),
         }
     SCREENSHOTS.mkdir(parents=True, exist_ok=True)
-    (SCREENSHOTS / "summary.json").write_text(json.dumps(summary, indent=1), encoding="utf-8")
+    worker = os.environ.get("PYTEST_XDIST_WORKER")
+    name = f"summary-{worker}.json" if worker else "summary.json"
+    (SCREENSHOTS / name).write_text(json.dumps(summary, indent=1), encoding="utf-8")
 
 
 def test_site_has_content_pages():
@@ -366,10 +369,8 @@ def test_no_cdn_mentioned():
     assert not {k: v for k, v in hits.items() if v}
 
 
-@pytest.mark.parametrize("width", sorted(VIEWPORTS, reverse=True))
-@pytest.mark.parametrize("rel", PAGES)
-def test_page(visit, rel, width):
-    v = visit(rel, width)
+def _load_problems(v: PageVisit) -> list[str]:
+    """Offline, no failed request, no script or console error, every image and formula."""
     problems = []
     if v.external:
         problems.append(f"requests left 127.0.0.1 (the site must work offline): {v.external}")
@@ -390,7 +391,7 @@ def test_page(visit, rel, width):
             problems.append(f"maths left untypeset: {v.untypeset_math}")
     if v.mjx_errors:
         problems.append(f"MathJax errors (mjx-merror): {v.mjx_errors}")
-    assert not problems, f"{rel} at {width} px:\n  " + "\n  ".join(problems)
+    return problems
 
 
 def _listed(what: str, items: list[str], limit: int = 12) -> str:
@@ -398,11 +399,8 @@ def _listed(what: str, items: list[str], limit: int = 12) -> str:
     return f"{len(items)} {what}:\n    " + "\n    ".join(items[:limit]) + more
 
 
-@pytest.mark.parametrize("width", sorted(VIEWPORTS, reverse=True))
-@pytest.mark.parametrize("rel", PAGES)
-def test_layout(visit, rel, width):
+def _layout_problems(v: PageVisit) -> list[str]:
     """Nothing cut off, no raw TeX, no sideways page scroll (see layout_checks.js)."""
-    v = visit(rel, width)
     layout = v.layout
     problems = []
     if layout["math"]["cut"]:
@@ -415,20 +413,17 @@ def test_layout(visit, rel, width):
         problems.append(_listed("places with raw TeX in the text", layout["rawTex"]))
     if layout["pageOverflow"]:
         problems.append(layout["pageOverflow"])
-    assert not problems, (f"{rel} at {width} px (screenshot {v.screenshot}):\n  "
-                          + "\n  ".join(problems))
+    return problems
 
 
-@pytest.mark.parametrize("rel", PAGES)
-def test_internal_links(visit, rel):
-    v = visit(rel)
-    page_url = v.url
+def _link_problems(v: PageVisit) -> list[str]:
+    """Every internal link points to a file of the built site."""
     broken = []
     for href in v.hrefs:
         href = href.strip()
         if not href or href.startswith("#"):
             continue
-        target = urlsplit(urljoin(page_url, href))
+        target = urlsplit(urljoin(v.url, href))
         if target.scheme not in {"http", "https"} or target.hostname not in LOCAL_HOSTS:
             continue  # external link, mailto:, javascript:, ...
         path = unquote(target.path).lstrip("/")
@@ -437,4 +432,19 @@ def test_internal_links(visit, rel):
             file = file / "index.html"
         if not file.is_file():
             broken.append(href)
-    assert not broken, f"{rel}: internal links to missing files: {broken}"
+    return [f"internal links to missing files: {broken}"] if broken else []
+
+
+@pytest.mark.parametrize("width", sorted(VIEWPORTS, reverse=True))
+@pytest.mark.parametrize("rel", PAGES)
+def test_page(visit, rel, width):
+    """One page load at one width, every check on it: it loads offline with its maths
+    typeset (``_load_problems``), nothing is cut off (``_layout_problems``) and, at the
+    laptop width, its internal links resolve (``_link_problems``).  One test per load,
+    so that pytest-xdist workers never load the same page twice."""
+    v = visit(rel, width)
+    problems = _load_problems(v) + _layout_problems(v)
+    if width == max(VIEWPORTS):
+        problems += _link_problems(v)
+    assert not problems, (f"{rel} at {width} px (screenshot {v.screenshot}):\n  "
+                          + "\n  ".join(problems))

@@ -1,4 +1,7 @@
-"""`python -m whittaker_teach grade`: a generated class of 31 submissions graded into the CSV.
+"""`python -m whittaker_teach grade`: a generated class graded into the CSV.
+
+`make test` grades one submission of every kind (15 files); `make slow` grades
+the whole class of 31, with the ordinary kinds repeated as in a real class.
 
 All right, all wrong, partly answered, unanswered, answers as strings and as
 SymPy objects, a cell that raises, an infinite loop, a 10 GB allocation, a
@@ -51,8 +54,9 @@ def _checks(answers):
     return [f"check({EX!r}, {answers[p]}, part={p!r})" for p in PARTS]
 
 
-def _class(folder, outside):
-    """{file name: (expected {part: ok}, words of the failure row or None)}."""
+def _class(folder, outside, full=True):
+    """{file name: (expected {part: ok}, words of the failure row or None)}; with
+    ``full=False`` one submission of each ordinary kind instead of a class's worth."""
     start = "from whittaker_teach.exercises import check"
     none = dict.fromkeys(PARTS, "None")
     expected = {}
@@ -61,20 +65,23 @@ def _class(folder, outside):
         _notebook(folder / name, cells, exercise)
         expected[name] = (oks, failure)
 
-    for i in range(4):
+    def copies(n):
+        return range(n if full else 1)
+
+    for i in copies(4):
         add(f"right{i}.ipynb", [start, *_checks(RIGHT)], dict.fromkeys(PARTS, True))
-    for i in range(2):
+    for i in copies(2):
         add(f"right-sympy{i}.ipynb", [start, SYMBOLS, *_checks(SYMPY_RIGHT)],
             dict.fromkeys(PARTS, True))
-    for i in range(6):
+    for i in copies(6):
         add(f"wrong{i}.ipynb", [start, *_checks(WRONG)], dict.fromkeys(PARTS, False))
-    for i in range(3):
+    for i in copies(3):
         add(f"partly-a{i}.ipynb", [start, *_checks({**none, "L_star": RIGHT["L_star"]})],
             {"L_star": True, "r_pp": False, "h": False})
         add(f"partly-b{i}.ipynb",
             [start, *_checks({**none, "h": RIGHT["h"], "r_pp": WRONG["r_pp"]})],
             {"L_star": False, "r_pp": False, "h": True})
-    for i in range(4):
+    for i in copies(4):
         add(f"blank{i}.ipynb", [start, *_checks(none)], dict.fromkeys(PARTS, False))
     checks = _checks(RIGHT)
     add("raises.ipynb", [start, checks[0], "1/0", *checks[1:]], dict.fromkeys(PARTS, True),
@@ -117,14 +124,16 @@ def package_path(monkeypatch):
     return root
 
 
-def test_a_class_is_graded_into_the_expected_csv(tmp_path, package_path):
+@pytest.mark.parametrize("full", [pytest.param(False, id="one-of-each-kind"),
+                                  pytest.param(True, id="class-of-31", marks=pytest.mark.slow)])
+def test_a_class_is_graded_into_the_expected_csv(tmp_path, package_path, full):
     folder = tmp_path / "submissions"
     folder.mkdir()
     outside = tmp_path / "lecturer"
     outside.mkdir()
     (outside / "keep.txt").write_text("keep me", encoding="utf-8")
-    expected = _class(folder, outside)
-    assert len(expected) >= 30
+    expected = _class(folder, outside, full)
+    assert len(expected) == (31 if full else 15)
     paths = sorted(str(p) for p in folder.iterdir())
     out = tmp_path / "grades.csv"
     rows, line = grading.grade(paths, str(out), feedback=str(tmp_path / "feedback"), jobs=2,
