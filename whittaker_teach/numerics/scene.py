@@ -375,13 +375,16 @@ def _reduced_within(red, q0, qp0, h, span, params, *, tol, model, method, rtol, 
     path, r, err, counts = _integrate(run, compare, tol, "reduced", tried)
     if path is None:
         raise _no_model(tol, f"reduction of the {S.name}", "reduced model", r, err)
-    closed = ("model='reduced' was asked; " if model == "reduced" else
-              "the closed form does not apply here (the amplitude reaches pi/2, or q_eps "
+    e = red._eps.func.__name__
+    closed = ("the closed form does not apply here (the amplitude reaches pi/2, or q_eps "
               "is not x); " if has_closed_form(S) else "")
+    lead = (f"model='reduced' was asked: the reduced model (1.26) runs in {e}"
+            if model == "reduced" else
+            f"{closed}a path in {e} is asked, so the reduced model (1.26) runs (the study "
+            "finds the full model in t 1.4-3.3 times cheaper by evaluations down to 1e-12: "
+            "system.simulate(..., tol=...) for a motion in t)")
     path.choice = Choice("reduced", "DOP853", r, tol, err, (
-        f"{closed}a path in {red._eps.func.__name__} is asked, so the reduced model (1.26) "
-        f"runs (the study finds the full model in t 1.4-3.3 times cheaper by evaluations "
-        f"down to 1e-12: system.simulate(..., tol=...) for a motion in t); DOP853, rtol "
+        f"{lead}; DOP853, rtol "
         f"{r:.1e}, the loosest whose estimated error (against a run at rtol/10"
         f"{'' if path._dense is not None else ', compared at the end point'}) is within "
         f"tol ({counts[1]} evaluations in all)"), tried, counts[0])
