@@ -20,14 +20,17 @@ from ..errors import ModelError, ModelTypeError
 
 __all__ = ["ROUNDOFF", "SCIPY_METHODS", "FIXED_STEP_METHODS", "coordinate_of", "initial_values",
            "parameter_values", "check_method", "check_tolerances", "check_span", "check_t_eval",
-           "real", "MAX_T_EVAL", "FORMULATIONS", "TimeInput", "time_input", "state_input",
+           "real", "MAX_T_EVAL", "MIN_RTOL", "MIN_RTOL_TIGHT", "FORMULATIONS", "TimeInput", "time_input", "state_input",
            "ReducedInput", "reduced_input"]
 
 #: A radicand within ROUNDOFF * (its scale) below zero is round-off of zero: it is
 #: clipped to 0 (a turning point); further below, the state is off the energy surface.
 ROUNDOFF = 64 * 2.220446049250313e-16
 
-SCIPY_METHODS = ("RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA")
+SCIPY_METHODS = ("RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA", "DOP853-tight")
+#: The smallest rtol of scipy's methods (about 100 machine epsilons) and of
+#: "DOP853-tight" (DOP853 allowed below scipy's floor, :class:`.ivp.TightDOP853`).
+MIN_RTOL, MIN_RTOL_TIGHT = 2.3e-14, 4.5e-16
 FIXED_STEP_METHODS = ("DLA",)
 IMPLICIT = ("Radau", "BDF", "LSODA")
 
@@ -135,16 +138,22 @@ def check_method(method):
     if method in SCIPY_METHODS or method in FIXED_STEP_METHODS:
         return method
     raise ModelError(f"unknown method {method!r}: use one of scipy's "
-                     f"{', '.join(SCIPY_METHODS)}, or 'DLA' (the fixed-step discrete "
+                     f"{', '.join(SCIPY_METHODS[:-1])}, 'DOP853-tight' (DOP853 with rtol "
+                     "allowed below scipy's floor) or 'DLA' (the fixed-step discrete "
                      "Lagrange-d'Alembert integrator)")
 
 
-def check_tolerances(rtol, atol):
+def check_tolerances(rtol, atol, method=None):
     """(rtol, atol) as floats; atol=None means atol = rtol."""
     rtol = real(rtol, "rtol")
-    if not 2.3e-14 <= rtol < 1:
+    if method == "DOP853-tight":
+        if not MIN_RTOL_TIGHT <= rtol < 1:
+            raise ModelError(f"rtol = {rtol:g} is outside [{MIN_RTOL_TIGHT:g}, 1) for "
+                             "DOP853-tight: below 2 machine epsilons no step is accepted")
+    elif not MIN_RTOL <= rtol < 1:
         raise ModelError(f"rtol = {rtol:g} is outside [2.3e-14, 1): below about 100 machine "
-                         "epsilons the error estimate is round-off")
+                         "epsilons scipy's error estimate is near round-off (method "
+                         "'DOP853-tight' allows rtol down to 4.5e-16)")
     atol = rtol if atol is None else real(atol, "atol")
     if atol <= 0:
         raise ModelError(f"atol = {atol:g} must be positive")
@@ -259,7 +268,7 @@ def time_input(system, q0, qdot0, t_span, params, method, rtol, atol, formulatio
         raise ModelError(f"dt is the step of the fixed-step method 'DLA'; {method} chooses "
                          "its own steps (set rtol and atol)")
     else:
-        rtol, atol = check_tolerances(rtol, atol)
+        rtol, atol = check_tolerances(rtol, atol, method)
     q, v, p = state_input(system, q0, qdot0, params)
     return TimeInput(q, v, p, span, method, rtol, atol, formulation, t_eval, bool(dense), dt,
                      max_energy_error)
@@ -292,7 +301,7 @@ def reduced_input(red, q0, qp0, h, span, params, method, rtol, atol, on_turning_
         raise ModelError("'DLA' integrates the full model in time; the reduced model takes "
                          "a scipy method (DOP853, RK45, Radau, LSODA, ...)")
     method = check_method(method)
-    rtol, atol = check_tolerances(rtol, atol)
+    rtol, atol = check_tolerances(rtol, atol, method)
     if on_turning_point not in ("raise", "switch"):
         raise ModelError(f"on_turning_point must be 'raise' or 'switch', got "
                          f"{on_turning_point!r}")
