@@ -18,7 +18,7 @@ candidates are tried cheapest first:
    (the cheapest by evaluations at every target of the study but one), atol
    tiny, rtol = tol / 10 to start.  The error is *estimated*, not assumed: the
    run is repeated at rtol / 10 and the difference is the estimate; if it
-   exceeds ``tol`` the tolerance is tightened, down to the package's 2.3e-14.
+   exceeds ``tol`` the tolerance is tightened, down to scipy's smallest, 2.3e-14.
 
 If no candidate reaches ``tol``, a ModelError gives the best error available.
 The result is the usual :class:`~.results.Trajectory` or :class:`~.results.Path`
@@ -240,11 +240,11 @@ def _integrate(run, compare, tol, model, tried):
     return None, best[1], best[2], None
 
 
-def _no_model(tol, what, best, rtol, tried):
-    where = f"the {best}, DOP853 at rtol {rtol:.1e}, against a run at rtol {MIN_RTOL:g}"
+def _no_model(tol, what, model, rtol, err):
+    where = f"the {model}, DOP853 at rtol {rtol:.1e}, against a run at rtol {MIN_RTOL:g}"
     return ModelError(f"no model reaches the relative error {tol:g} for this {what}: the "
-                      f"best available is about {tried:.1e} ({where}, the package's "
-                      f"smallest); ask for tol >= {2 * tried:.0e}")
+                      f"best available is about {err:.1e} ({where}, scipy's smallest); ask "
+                      f"for tol >= {2 * err:.0e}")
 
 
 def _exact_reaches(tol):

@@ -282,7 +282,7 @@ def study(quick=False, progress=True, amplitudes=AMPLITUDES, methods=None, rtols
     import whittaker_teach as wt
     cfg = QUICK if quick else {"periods": PERIODS, "rtols": RTOLS, "dla_steps": DLA_STEPS,
                                "repeat": REPEAT, "methods": METHODS, "tight": True}
-    tight = cfg["tight"] if tight is None else tight
+    tight = cfg.get("tight", False) if tight is None else tight
     methods = cfg["methods"] if methods is None else methods
     periods = cfg["periods"] if periods is None else periods
     rtols = cfg["rtols"] if rtols is None else rtols
@@ -447,8 +447,8 @@ def _setting(r):
 def table(results):
     """Every run as a text table (80 columns), one block per amplitude."""
     lines = []
-    head = (f"{'model':11s} {'method':12s} {'setting':>8s} {'theta':>7s} {'x':>7s} {'y':>7s} "
-            f"{'t':>7s} {'nfev':>6s} {'ms':>7s}")
+    head = (f"{'model':11s} {'method':12s} {'setting':>10s} {'theta':>6s} {'x':>6s} "
+            f"{'y':>6s} {'t':>6s} {'nfev':>6s} {'ms':>7s}")
     for a in results["meta"]["amplitudes"]:
         lines += [f"amplitude a = {a:g} (errors relative to each component's scale)", head]
         for r in results["runs"]:
@@ -456,12 +456,12 @@ def table(results):
                 continue
             meth = r["method"] if r["model"] != "exact" else "-"
             if "failed" in r:
-                lines.append(f"{r['model']:11s} {meth:12s} {_setting(r):>8s}  failed: "
+                lines.append(f"{r['model']:11s} {meth:12s} {_setting(r):>10s}  failed: "
                              f"{r['failed'][:40]}")
                 continue
-            lines.append(f"{r['model']:11s} {meth:12s} {_setting(r):>8s} "
-                         f"{r['err_theta']:7.0e} {r['err_x']:7.0e} {r['err_y']:7.0e} "
-                         f"{r['err_t']:7.0e} {r['nfev']:6d} {1e3 * r['seconds']:7.1f}")
+            lines.append(f"{r['model']:11s} {meth:12s} {_setting(r):>10s} "
+                         f"{r['err_theta']:6.0e} {r['err_x']:6.0e} {r['err_y']:6.0e} "
+                         f"{r['err_t']:6.0e} {r['nfev']:6d} {1e3 * r['seconds']:7.1f}")
         lines.append("")
     return "\n".join(lines)
 
