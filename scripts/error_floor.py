@@ -83,7 +83,9 @@ def main():
         return (np.max(np.abs(Y[1] - e["theta"])) / a, np.max(np.abs(Y[0] - e["x"])) / xs,
                 np.max(np.abs(Y[2] - e["y"])) / ys)
     print(f"sledge, a = {a}, 10 periods; errors (theta, x, y) relative to each scale;\n"
-          f"100 machine epsilons = {100 * np.finfo(float).eps:.1e}\n")
+          f"100 machine epsilons = {100 * np.finfo(float).eps:.1e}; long double here has "
+          f"eps {np.finfo(np.longdouble).eps:.1e}\n(on a machine where it is 2.2e-16, the "
+          f"long double rows say nothing)\n")
     for form in ("chaplygin", "multiplier"):
         u0 = full if form == "multiplier" else full[:5]
         print(f"{form} form")
