@@ -588,8 +588,17 @@ class Reduction:
         end).  Options: ``on_turning_point`` (``"raise"``: a ChartError where
         qdot_eps vanishes; ``"switch"``: continue in time across it),
         ``turning_tol``, ``t0``, ``dense``.  Returns a
-        :class:`~whittaker_teach.numerics.results.Path`.
+        :class:`~whittaker_teach.numerics.results.Path`.  With ``tol=`` (a relative
+        error) instead of method/rtol, the package picks the model and the method
+        (the closed form where one exists, else the reduced model with a checked
+        rtol); ``path.explain()`` says which and why
+        (:mod:`whittaker_teach.numerics.scene`).
         """
+        if options.get("tol") is not None:      # the package picks the model and method
+            from .numerics.scene import simulate_within
+            return simulate_within(self, q0, qp0, h, span, params, method=method, rtol=rtol,
+                                   atol=atol, **options)
+        options.pop("tol", None)
         from .numerics.reduced_model import simulate
         return simulate(self, q0, qp0, h, span, params, method, rtol, atol, **options)
 

@@ -503,7 +503,16 @@ class ChaplyginSystem:
         ``atol=None`` means atol = rtol.  Options: ``formulation`` (``"auto"``,
         ``"chaplygin"``, ``"multiplier"``), ``t_eval``, ``dense``, and for DLA
         ``max_energy_error`` (a guard against a too coarse step).  Returns a
-        :class:`~whittaker_teach.numerics.results.Trajectory`.
+        :class:`~whittaker_teach.numerics.results.Trajectory`.  With ``tol=`` (a
+        relative error) instead of method/rtol, the package picks the model and
+        the method (the closed form where one exists, else the full model with a
+        checked rtol); ``traj.explain()`` says which and why
+        (:mod:`whittaker_teach.numerics.scene`).
         """
+        if options.get("tol") is not None:      # the package picks the model and method
+            from .numerics.scene import simulate_within
+            return simulate_within(self, q0, qdot0, t_span, params, method=method, rtol=rtol,
+                                   atol=atol, **options)
+        options.pop("tol", None)
         from .numerics.time_model import simulate
         return simulate(self, q0, qdot0, t_span, params, method, rtol, atol, **options)

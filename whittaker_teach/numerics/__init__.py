@@ -1,27 +1,30 @@
 """Numerics: the full, reduced and exact models, integrated and compared.
 
-One entry per model; each calls ``state`` (input checks, then the generated
-code) and ``ivp`` (one integration), and nothing calls back:
+One entry per model.  An entry checks its input once, up front
+(``validate``), then asks ``codegen`` for the compiled model (generated on
+first use, cached), which gives the initial state and the right-hand side,
+and ``ivp`` integrates; nothing calls back into an entry:
 
 ==========================  ====================================================
 ``time_model``              entry: the full model in t, ``ChaplyginSystem.simulate``
 ``reduced_model``           entry: the reduced model (1.26) in q_eps, ``Reduction.simulate``
 ``integrators``             entry: the discrete Lagrange-d'Alembert integrator (``method="DLA"``)
 ``exact``                   entry: the sledge in closed form (Bessel functions)
-``scene``                   a motion within a requested error: picks the model and the method
-``state``                   the starting state of each model: ``validate``, then ``codegen``
-``codegen``                 the symbolic core's equations as Python functions (cached)
-``validate``                checks of the numerical input (ModelError naming the mistake)
+``scene``                   ``simulate(..., tol=...)``: picks the model and the method
+``validate``                every check of the numerical input (ModelError naming the mistake)
+``codegen``                 the compiled models: equations as Python functions, initial states
 ``ivp``                     one call of scipy's ``solve_ivp``; zeros inside steps
-``results``                 what a simulation returns: ``Trajectory``, ``Path``
+``results``                 what a simulation returns: ``Trajectory``, ``Path``, ``Choice``
 ``work_precision``          speed against error: ``python -m whittaker_teach bench numerics``
 ``hard_cases``              the hard cases, each run and judged
 ``figures``                 regenerates the book's stored results (``make bench``)
 ==========================  ====================================================
 
-Imports run one way: entries -> state -> (validate, codegen); entries -> ivp,
-results; ``time_model`` -> ``integrators`` for ``method="DLA"``.  No circles
-(tested).  Importing this package imports none of them (nor numpy or
+Imports run one way: ``scene`` -> (``exact``, ``validate``, ``results``);
+entries -> (``validate``, ``codegen``, ``ivp``, ``results``); ``time_model`` ->
+``integrators`` for ``method="DLA"``.  No circles (tested).  A call of
+``system.simulate`` crosses from one module to another five times
+(``scripts/trace_numerics.py`` counts them; tested).  Importing this package imports none of them (nor numpy or
 scipy), but it checks that they are installed: they are the ``[numerics]`` extra
 (``pip install "whittaker-teach[numerics]"``), which the symbolic core does not
 need and the in-browser site (Pyodide) does not have. Without them every
@@ -61,7 +64,7 @@ def require_extra(modules=EXTRA_MODULES, what="whittaker_teach.numerics"):
 require_extra()
 
 __all__ = ["MissingExtraError", "require_extra", "codegen", "time_model", "reduced_model",
-           "integrators", "exact", "scene", "state",
+           "integrators", "exact", "scene",
            "work_precision", "hard_cases", "results", "validate", "figures", "ivp"]
 
 

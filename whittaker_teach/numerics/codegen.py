@@ -34,7 +34,7 @@ import sympy as sp
 from ..errors import ModelError
 
 __all__ = ["time_model", "reduced_model", "dla_model", "constraint_rows", "pole_factors",
-           "constraint_poles",
+           "constraint_poles", "formulation_of", "check_poles", "POLE_TOL",
            "TimeModel", "ReducedModel", "DLAModel", "cache_of"]
 
 
@@ -104,7 +104,66 @@ def constraint_rows(system):
     return sp.Matrix(rows) if rows else sp.zeros(0, len(qd))
 
 
+# ----------------------------------------------------------------- poles of (1.3)
+#: An initial state where a denominator of the constraints is smaller than this
+#: is refused (the dependent velocities would be round-off divided by round-off).
+POLE_TOL = 1e-12
+
+
+def check_poles(system, qv, p):
+    """ModelError if the coordinates ``qv`` are (nearly) at a pole of the constraints."""
+    for text, fn in constraint_poles(system):
+        if abs(fn(*qv, *p)) < POLE_TOL:
+            raise ModelError(f"the initial state is (nearly) at a pole of the constraints "
+                             f"(1.3), {text} = {fn(*qv, *p):.1e}: the independent velocities "
+                             "do not determine the dependent ones there; start elsewhere")
+
+
+def _all_velocities(system, from_independent, qv, vs, p):
+    """Every velocity from the independent ones (1.3), as floats; ModelError if one is
+    not finite (a pole of a constraint)."""
+    import numpy as np
+    check_poles(system, qv, p)
+    with np.errstate(all="ignore"):
+        allv = [float(w) for w in from_independent(*qv, *vs, *p)]
+    if not all(np.isfinite(allv)):
+        bad = [c.func.__name__ for c, w in zip(system.coordinates, allv) if not np.isfinite(w)]
+        raise ModelError(f"the constraint for {', '.join(bad)}dot cannot be evaluated at the "
+                         "initial state (a pole of the constraint, 1.3): start elsewhere")
+    return allv
+
+
 # ----------------------------------------------------------------- time model
+def formulation_of(system, formulation="auto"):
+    """``formulation`` with ``"auto"`` resolved: ``"multiplier"`` when the constraints
+    are linear in the velocities and have a pole, otherwise ``"chaplygin"`` (cached).
+
+    >>> import whittaker_teach as wt
+    >>> formulation_of(wt.examples.sledge())
+    'multiplier'
+    """
+    if formulation != "auto":
+        if formulation not in ("chaplygin", "multiplier"):
+            raise ModelError(f"unknown formulation {formulation!r}: use 'auto', "
+                             "'chaplygin' (1.4) or 'multiplier' (Lagrange-d'Alembert)")
+        if formulation == "multiplier":
+            constraint_rows(system)          # linear constraints, or ModelError
+        return formulation
+    cache = cache_of(system)
+    if "auto" not in cache:
+        S = system
+        q = [S.q[c] for c in S.coordinates]
+        choice = "chaplygin"
+        if pole_factors(list(S._phi.values()), q):
+            try:
+                constraint_rows(S)
+                choice = "multiplier"
+            except ModelError:
+                pass
+        cache["auto"] = choice
+    return cache["auto"]
+
+
 @dataclass
 class TimeModel:
     """A compiled time-domain model: ``rhs(y, p)`` with ``y`` laid out as ``state``."""
@@ -119,6 +178,22 @@ class TimeModel:
     from_independent: object    # numpy: (q..., qdot_sigma..., p...) -> all n velocities
     poles: list = field(default_factory=list)    # [(expr text, function(y, p))]
     poles_np: list = field(default_factory=list)  # [(expr text, numpy f(*y, *p))]
+    system: object = field(default=None, repr=False)
+
+    def initial_state(self, q, v, p):
+        """The state vector from {coordinate: value} ``q`` (all) and ``v`` (the independent
+        velocities); ModelError at a pole of the constraints or of (1.4)."""
+        import numpy as np
+        S = self.system
+        qv = [q[c] for c in S.coordinates]
+        vs = [v[c] for c in S.independent_coordinates]
+        allv = _all_velocities(S, self.from_independent, qv, vs, p)
+        y0 = qv + (vs if self.formulation == "chaplygin" else allv)
+        for text, fn in (self.poles_np if self.formulation == "chaplygin" else ()):
+            if fn(*y0, *p) == 0:
+                raise ModelError(f"the Chaplygin form (1.4) has a pole at the initial state "
+                                 f"({text} = 0); use formulation='multiplier'")
+        return np.array(y0)
 
 
 def _time_exprs_chaplygin(S):
@@ -214,7 +289,7 @@ def _build_time(S, formulation):
         jac = _unpack(_lambdify(args, sp.Matrix(f).jacobian(y).tolist()), len(y))
     return TimeModel(formulation, [s.name for s in y], len(S.coordinates), rhs, jac,
                      _lambdify(args, E, "numpy"), _lambdify(args, vel, "numpy"),
-                     _lambdify(q + sig + P, vel_sig, "numpy"), poles, poles_np)
+                     _lambdify(q + sig + P, vel_sig, "numpy"), poles, poles_np, S)
 
 
 def _unpack(fn, n):
@@ -225,17 +300,15 @@ def _unpack(fn, n):
     return call
 
 
-def time_model(system, formulation):
+def time_model(system, formulation="auto"):
     """The compiled time-domain model of ``system`` (cached on it).
 
-    ``formulation``: ``"chaplygin"``, state (q_s, qdot_sigma), right-hand side
+    ``formulation``: ``"auto"`` (see :func:`formulation_of`), ``"chaplygin"``, state (q_s, qdot_sigma), right-hand side
     from (1.4) and the constraints (1.3); or ``"multiplier"``, state (q_s,
     qdot_s), from the Lagrange-d'Alembert equations with a multiplier and the
     constraints in the cleared form A(q) qdot = 0 (:func:`constraint_rows`).
     """
-    if formulation not in ("chaplygin", "multiplier"):
-        raise ModelError(f"unknown formulation {formulation!r}: use 'chaplygin' (1.4) "
-                         "or 'multiplier' (Lagrange-d'Alembert, regular at the poles of 1.4)")
+    formulation = formulation_of(system, formulation)
     cache = cache_of(system)
     key = ("time", formulation)
     if key not in cache:
@@ -348,6 +421,18 @@ class DLAModel:
     rows: object
     energy: object
     from_independent: object     # numpy: (q..., qdot_sigma..., P...) -> all velocities
+    system: object = field(default=None, repr=False)
+
+    def initial_state(self, q, v, P):
+        """(q0 array, p0 = M qdot + b): positions and momenta from {coordinate: value}
+        ``q`` (all) and ``v`` (the independent velocities); ModelError at a pole of (1.3)."""
+        import numpy as np
+        S = self.system
+        qv = [q[c] for c in S.coordinates]
+        allv = np.array(_all_velocities(S, self.from_independent, qv,
+                                        [v[c] for c in S.independent_coordinates], P))
+        M, b = self.legendre(*qv, *P)
+        return np.array(qv), np.array(M, dtype=float) @ allv + np.array(b, dtype=float)
 
 
 def _build_dla(S):
@@ -389,7 +474,7 @@ def _build_dla(S):
                     _lambdify(q + v + P, E, "numpy"),
                     _lambdify(q + [S.qd[c] for c in S.independent_coordinates] + P,
                               [S.qd[c] if c in S.independent_coordinates
-                               else S._phi[S.q[c]] for c in coords], "numpy"))
+                               else S._phi[S.q[c]] for c in coords], "numpy"), S)
 
 
 def dla_model(system):

@@ -175,6 +175,13 @@ class SledgeExact:
         return {"x": x, "y": y, "theta": th, "xdot": self.C * math.cos(th),
                 "ydot": self.C * math.sin(th), "thetadot": -self.a * self.omega * sin(psi)}
 
+    def energy(self, state):
+        """The energy (3.4) of a state ``self(t)``, computed from its values (not assumed):
+        m (xdot^2 + ydot^2)/2 + J thetadot^2/2 + k^2 theta^2/2."""
+        s = state
+        return (0.5 * self.m * (s["xdot"] ** 2 + s["ydot"] ** 2)
+                + 0.5 * self.J * s["thetadot"] ** 2 + 0.5 * self.k ** 2 * s["theta"] ** 2)
+
     def phase(self, t):
         """psi = omega (t - t0) + phi, the phase of theta = a cos(psi)."""
         return self.omega * (np.asarray(t, dtype=float) - self.t0) + self.phi

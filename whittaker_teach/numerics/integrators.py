@@ -32,35 +32,13 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ModelError
-from . import codegen, validate
+from . import codegen
 from .results import CoordDict, Trajectory
-from .state import check_poles
 
 __all__ = ["simulate_dla", "dla_steps", "MAX_ENERGY_ERROR"]
 
 NEWTON_TOL = 1e-14      # on each increment, relative to |d_i| + dt
 NEWTON_MAXITER = 20
-
-
-def _start(system, q0, qdot0, params):
-    S = system
-    q = validate.initial_values(S, q0, "q0", S.coordinates)
-    v = validate.initial_values(
-        S, qdot0, "qdot0", S.independent_coordinates, forbidden=S.dependent_coordinates,
-        why_forbidden="is a dependent coordinate: its velocity follows from the constraint "
-                      "(1.3); give the velocities of the independent coordinates only")
-    P = validate.parameter_values(S, params)
-    m = codegen.dla_model(S)
-    qv = [q[c] for c in S.coordinates]
-    check_poles(S, qv, P)
-    with np.errstate(all="ignore"):
-        allv = np.array([float(w) for w in m.from_independent(
-            *qv, *[v[c] for c in S.independent_coordinates], *P)])
-    if not np.all(np.isfinite(allv)):
-        raise ModelError("the constraints cannot be evaluated at the initial state (a pole "
-                         "of 1.3): start elsewhere")
-    M, b = _legendre(m, np.array(qv), P)
-    return m, np.array(qv), M @ allv + b, P
 
 
 def _legendre(m, q, P):
@@ -167,23 +145,24 @@ def _guard_energy(E, t, dt, limit):
                          "max_energy_error=None to accept the run)")
 
 
-def simulate_dla(system, q0, qdot0, t_span, params, dt, dense=True,
-                 max_energy_error=MAX_ENERGY_ERROR):
-    """The full model by the DLA integrator with a fixed step close to ``dt``.
+def simulate_dla(system, inp):
+    """The full model by the DLA integrator with a fixed step close to ``inp.dt``, from
+    the checked input ``inp`` (:func:`.validate.time_input`; ``system.simulate(...,
+    method="DLA", dt=...)`` calls it).
 
     The number of steps is N = round((t1 - t0)/dt) (at least 1) and the step
     actually used is (t1 - t0)/N, so that the last point is t1.  A fixed-step
     method does not estimate its error; as a guard, a run whose relative energy
     error exceeds ``max_energy_error`` (None: no guard) raises a ModelError.
     """
-    t0, t1 = t_span
-    if not dt > 0:
-        raise ModelError(f"dt = {dt} must be positive")
-    N = max(1, int(round(abs(t1 - t0) / dt)))
+    t0, t1 = inp.span
+    dense, max_energy_error, P = inp.dense, inp.max_energy_error, inp.p
+    N = max(1, int(round(abs(t1 - t0) / inp.dt)))
     if N > 10**8:
-        raise ModelError(f"dt = {dt} gives {N} steps: too many")
+        raise ModelError(f"dt = {inp.dt} gives {N} steps: too many")
     h = (t1 - t0) / N
-    m, q, p, P = _start(system, q0, qdot0, params)
+    m = codegen.dla_model(system)
+    q, p = m.initial_state(inp.q, inp.v, P)
     Q, Pm, nres, njac = dla_steps(m, q, p, h, N, P)
     t = t0 + h * np.arange(N + 1)
     V = _velocities(m, Q, Pm, P)

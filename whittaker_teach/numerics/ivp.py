@@ -14,12 +14,38 @@ True
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
-from scipy.integrate import solve_ivp
+from scipy.integrate import DOP853, solve_ivp
 
 from ..errors import ModelError
 
-__all__ = ["solve", "as_fun", "roots_within_steps", "ARITHMETIC"]
+__all__ = ["solve", "as_fun", "roots_within_steps", "ARITHMETIC", "TightDOP853", "TIGHT"]
+
+#: The method name of :class:`TightDOP853`.
+TIGHT = "DOP853-tight"
+
+
+class TightDOP853(DOP853):
+    """scipy's DOP853 with ``rtol`` below scipy's floor of 100 machine epsilons.
+
+    scipy raises any rtol below 2.2e-14 to 2.2e-14; this subclass starts
+    scipy's solver at that value (the first step is chosen with it) and then
+    sets the requested rtol (down to 2 machine epsilons, checked by
+    :func:`.validate.check_tolerances`).  Below 100 eps the error estimate
+    is itself near round-off, so the run takes more steps than the error
+    needs; what it buys is a smaller truncation error: on the sledge the
+    paper's form (1.4) at rtol 1e-15 reaches a relative error of 4e-15 over
+    10 periods, where rtol 2.3e-14 stops at 1e-13 (chapter 7).
+    """
+
+    def __init__(self, fun, t0, y0, t_bound, rtol=1e-3, atol=1e-6, **kw):
+        floor = 100 * np.finfo(float).eps
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            super().__init__(fun, t0, y0, t_bound, rtol=max(rtol, floor), atol=atol, **kw)
+        self.rtol = rtol
 
 _BAD = (ZeroDivisionError, ValueError, OverflowError)
 #: The raw arithmetic errors that must never reach a user (they become ModelErrors).
@@ -70,7 +96,8 @@ def solve(rhs, jac, span, y0, p, method, rtol, atol, *, what, events=None, dense
         kw["jac"] = jac_fun or as_jac(jac, p)
     with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
         # an infinite trial value (rejected step) makes scipy's error estimate inf - inf
-        sol = solve_ivp(fun, span, y0, method=method, rtol=rtol, atol=atol, events=events,
+        sol = solve_ivp(fun, span, y0, method=TightDOP853 if method == TIGHT else method,
+                        rtol=rtol, atol=atol, events=events,
                         dense_output=dense, t_eval=t_eval, max_step=max_step, **kw)
     if sol.status == -1:
         where = sol.t[-1] if len(sol.t) else span[0]

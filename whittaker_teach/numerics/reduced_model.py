@@ -47,7 +47,6 @@ from ..errors import ChartError, ModelError
 from . import codegen, validate
 from .ivp import ARITHMETIC, roots_within_steps, solve
 from .results import CoordDict, Path, Switch
-from .state import choose_formulation, initial_state
 
 __all__ = ["simulate", "reduced_initial_state", "DEFAULT_TURNING_TOL"]
 
@@ -171,8 +170,8 @@ class _TimeBridge:
 
     def __init__(self, system, p, eps):
         self.S, self.p = system, p
-        self.form = choose_formulation(system, "auto")
-        self.fm = codegen.time_model(system, self.form)
+        self.fm = codegen.time_model(system, "auto")
+        self.form = self.fm.formulation
         self.n = len(system.coordinates)
         self.ie = system.coordinates.index(eps)
         sig = system.independent_coordinates
@@ -190,43 +189,12 @@ class _TimeBridge:
         return y[:self.n].tolist(), [y[i] for i in self.iv]
 
 
-def _validate(red, q0, qp0, h, span, params, method, rtol, atol, on_turning_point):
-    S, eps = red.system, red._eps
-    if method == "DLA":
-        raise ModelError("'DLA' integrates the full model in time; the reduced model takes "
-                         "a scipy method (DOP853, RK45, Radau, LSODA, ...)")
-    method = validate.check_method(method)
-    rtol, atol = validate.check_tolerances(rtol, atol)
-    if on_turning_point not in ("raise", "switch"):
-        raise ModelError(f"on_turning_point must be 'raise' or 'switch', got "
-                         f"{on_turning_point!r}")
-    q = validate.initial_values(S, q0, "q0", S.coordinates)
-    qp = validate.initial_values(
-        S, qp0, "qp0", red._nus, forbidden=[eps] + S.dependent_coordinates,
-        why_forbidden=f"has no slope here: qp0 holds dq_nu/d{_n(eps)} for the coordinates "
-                      f"{', '.join(_n(c) for c in red._nus)} only (q_eps = {_n(eps)}; the "
-                      "dependent coordinates follow from the constraints, 1.23)")
-    h = validate.real(h, "h")
-    a, b = validate.check_span(span, "span")
-    if abs(a - q[eps]) > 1e-12 * max(1.0, abs(a)):
-        raise ModelError(f"span starts at {_n(eps)} = {a} but q0[{_n(eps)}] = {q[eps]}")
-    if (b - a) * red.direction < 0:
-        raise ModelError(f"span ({a}, {b}) runs against the direction {red.direction:+d} of "
-                         f"the reduction (the sign of qdot_{_n(eps)}); use "
-                         f"system.reduce('{_n(eps)}', direction={-red.direction})")
-    p = validate.parameter_values(S, params)
-    return method, rtol, atol, q, qp, h, (a, b), p
-
-
-def _reductions(red):
-    """The cache of reductions of the same system and q_eps, by direction."""
-    cache = codegen.cache_of(red.system).setdefault("reductions", {})
-    cache.setdefault((_n(red._eps), red.direction), red)
-    return cache
-
-
 def _reduction(red, direction):
-    cache = _reductions(red)
+    """The reduction of the same system and q_eps in ``direction`` (``red`` itself, or one
+    made once and cached on the system: a path that switches reuses its code)."""
+    if direction == red.direction:
+        return red
+    cache = codegen.cache_of(red.system).setdefault("reductions", {})
     key = (_n(red._eps), direction)
     if key not in cache:
         cache[key] = red.system.reduce(red._eps, direction)
@@ -236,10 +204,14 @@ def _reduction(red, direction):
 def simulate(red, q0, qp0, h, span, params, method="DOP853", rtol=1e-9, atol=None, *,
              on_turning_point="raise", turning_tol=DEFAULT_TURNING_TOL, t0=0.0, dense=True,
              max_switches=1000, max_bridge_time=None):
-    """Integrate the reduced model in q_eps; see :meth:`Reduction.simulate`."""
+    """Integrate the reduced model in q_eps; see :meth:`Reduction.simulate`.
+
+    The input is checked once (:func:`.validate.reduced_input`), then the compiled
+    model (:func:`.codegen.reduced_model`, cached) and :func:`.ivp.solve` run."""
     try:
-        return _simulate(red, q0, qp0, h, span, params, method, rtol, atol, on_turning_point,
-                         turning_tol, t0, dense, max_switches, max_bridge_time)
+        inp = validate.reduced_input(red, q0, qp0, h, span, params, method, rtol, atol,
+                                     on_turning_point, turning_tol, t0, max_bridge_time)
+        return _simulate(red, inp, dense, max_switches)
     except ARITHMETIC as err:
         raise ModelError(f"{red.system.name}, reduced model in {_n(red._eps)}: the arithmetic "
                          f"failed ({err}); the initial state, h or the parameters are out of "
@@ -248,18 +220,12 @@ def simulate(red, q0, qp0, h, span, params, method="DOP853", rtol=1e-9, atol=Non
                          "model)") from None
 
 
-def _simulate(red, q0, qp0, h, span, params, method, rtol, atol, on_turning_point,
-              turning_tol, t0, dense, max_switches, max_bridge_time):
-    method, rtol, atol, q, qp, h, (a, b), p = _validate(
-        red, q0, qp0, h, span, params, method, rtol, atol, on_turning_point)
-    tau = validate.real(turning_tol, "turning_tol")
-    if not 0 < tau < 0.25:
-        raise ModelError(f"turning_tol = {tau} must lie in (0, 0.25)")
+def _simulate(red, inp, dense, max_switches):
+    q, qp, h, (a, b), p, t0 = inp.q, inp.qp, inp.h, inp.span, inp.p, inp.t0
     S, eps = red.system, red._eps
-    _reductions(red)
-    chart = _Chart(red, p, h, tau)
+    chart = _Chart(red, p, h, inp.tau)
     z0 = ([q[c] for c in red._nus] + [qp[c] for c in red._nus]
-          + [validate.real(t0, "t0")] + [q[c] for c in S.dependent_coordinates])
+          + [t0] + [q[c] for c in S.dependent_coordinates])
     big = [(_n(c), qp[c]) for c in red._nus if not abs(qp[c]) <= MAX_SLOPE]
     if big:
         e = _n(eps)
@@ -278,8 +244,8 @@ def _simulate(red, q0, qp0, h, span, params, method, rtol, atol, on_turning_poin
     if not D0 > 0:
         raise ModelError(f"2 A2 = {D0:.6g} <= 0 at the start: the kinetic energy along "
                          f"{_n(eps)} is not positive (1.13)")
-    run = _Run(red, chart, p, h, method, rtol, atol, tau, on_turning_point, (a, b),
-               max_switches, max_bridge_time, dense)
+    run = _Run(red, chart, p, h, inp.method, inp.rtol, inp.atol, inp.tau,
+               inp.on_turning_point, (a, b), max_switches, inp.max_bridge_time, dense)
     return run.go(a, z0)
 
 
@@ -390,7 +356,7 @@ class _Run:
 
     def _time_limit(self, t):
         if self.max_bridge_time is not None:
-            return validate.real(self.max_bridge_time, "max_bridge_time")
+            return self.max_bridge_time
         a, b = self.span
         return 10 * max(abs(t - self.t_start), abs(b - a) / max(self.v0, 1e-300), 1e-6)
 
@@ -620,7 +586,9 @@ def reduced_initial_state(red, q0, qdot0, params):
     ({'theta': 0.5}, 3.221892820819)
     """
     S, eps = red.system, red._eps
-    y0, p, fm = initial_state(S, q0, qdot0, params, "chaplygin")
+    q, v, p = validate.state_input(S, q0, qdot0, params)
+    fm = codegen.time_model(S, "chaplygin")
+    y0 = fm.initial_state(q, v, p)
     n = len(S.coordinates)
     h = float(fm.energy(*y0, *p))
     v = dict(zip(S.independent_coordinates, y0[n:]))

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 
 from ..errors import ModelError
 
-__all__ = ["CoordDict", "Trajectory", "Path", "Switch"]
+__all__ = ["CoordDict", "Trajectory", "Path", "Switch", "Choice"]
 
 
 def _key_name(key):
@@ -59,6 +59,47 @@ class CoordDict(dict):
 
 
 @dataclass
+class Choice:
+    """Which model and method ``simulate(..., tol=...)`` picked, and why.
+
+    ``model`` ('exact', 'full' or 'reduced'), ``method``, ``rtol`` (None for the
+    closed form), ``tol`` (the relative error asked for), ``error`` (the estimated
+    relative error: for an integration, the difference from a run ten times
+    tighter; for the closed form, its rounding error), ``why`` (plain words),
+    ``tried``: every run made on the way, as (model, method, rtol, estimated
+    error, evaluations); ``check_nfev``: the evaluations of the run that checked
+    the chosen one.  ``str(choice)`` is the explanation.
+    """
+
+    model: str
+    method: str
+    rtol: object
+    tol: float
+    error: float
+    why: str
+    tried: list = field(default_factory=list)
+    check_nfev: int = 0
+
+    def __str__(self):
+        import textwrap
+        head = (f"{self.model} model, " + (f"{self.method} at rtol {self.rtol:.1e}"
+                                           if self.rtol else self.method)
+                + f": estimated relative error {self.error:.1e} <= tol {self.tol:g}")
+        lines = [head] + textwrap.wrap("why: " + self.why, 78, subsequent_indent="  ")
+        for model, method, rtol, err, nfev in self.tried:
+            est = "" if err is None else f", estimated error {err:.1e}"
+            lines.append(f"  tried {model} {method} rtol {rtol:.1e}{est} ({nfev} evaluations)")
+        return "\n".join(lines)
+
+
+def _explain(obj):
+    if obj.choice is None:
+        return (f"{obj.method}: chosen by the caller (simulate without tol); pass "
+                "tol=... to let the package choose the model and the method")
+    return str(obj.choice)
+
+
+@dataclass
 class Trajectory:
     """A motion integrated in time by :meth:`ChaplyginSystem.simulate`.
 
@@ -81,6 +122,11 @@ class Trajectory:
     formulation: str
     coordinates: list
     _dense: object = field(default=None, repr=False)
+    choice: object = None       # a Choice when simulate(..., tol=...) picked the model
+
+    def explain(self):
+        """Which model and method made this trajectory, and why (see :class:`Choice`)."""
+        return _explain(self)
 
     def __call__(self, t):
         if self._dense is None:
@@ -151,6 +197,11 @@ class Path:
     turning_points: list = field(default_factory=list)
     segments: list = field(default_factory=list)
     _dense: object = field(default=None, repr=False)
+    choice: object = None       # a Choice when simulate(..., tol=...) picked the model
+
+    def explain(self):
+        """Which model and method made this path, and why (see :class:`Choice`)."""
+        return _explain(self)
 
     def __call__(self, s):
         import numpy as np

@@ -1,35 +1,46 @@
-"""Scenes that choose their model: ``scene(system, q0, qdot0, t_span, params, tol=...)``.
+"""Motions within a requested error: ``simulate(..., tol=...)`` and ``scene(...)``.
 
-A scene asks for a motion within a relative error ``tol`` (relative to each
-coordinate's scale over the run) and leaves the choice of the model and the
-method to what the work-precision study (:mod:`.work_precision`, chapter 7)
-shows:
+``system.simulate(q0, qdot0, t_span, params, tol=1e-9)`` and
+``reduction.simulate(q0, qp0, h, span, params, tol=1e-9)`` ask for a motion
+within a relative error ``tol`` (relative to each coordinate's largest value
+over the run) and leave the choice of the model and the method to what the
+work-precision study (:mod:`.work_precision`, chapter 7) shows.  The
+candidates are tried cheapest first:
 
 1. **the exact solution** where one exists (the built-in sledge: the closed
    form (3.15) through Bessel functions; error about 1e-15, a fraction of a
-   millisecond for 1000 points);
-2. **the full model** otherwise, with DOP853 (the cheapest by evaluations at
-   every target of the study but one, 1e-6 at a = 1.5, where LSODA is) at the
-   tolerance the study shows reaching ``tol``: rtol = tol / 10 to start, atol
-   tiny.  The reduced model is never the cheaper one in the study (1.4 to 3.3
-   times the evaluations of the full model at equal error, the more the nearer
-   pi/2), so a scene given a reduction integrates its system in time and says
-   so.
+   millisecond for 1000 points, no code generated);
+2. **an integration**: for a system, the full model in t (formulation
+   ``"auto"``); for a reduction, the reduced model (1.26) in q_eps, since a
+   path in q_eps is what was asked (the study finds the full model 1.4-3.3
+   times cheaper in evaluations down to 1e-12, but the reduced model reaching
+   the lower floor at a small amplitude, 3.8e-14 against 1.8e-13).  DOP853
+   (the cheapest by evaluations at every target of the study but one), atol
+   tiny, rtol = tol / 10 to start.  The error is *estimated*, not assumed: the
+   run is repeated at rtol / 10 and the difference is the estimate; if it
+   exceeds ``tol`` the tolerance is tightened, down to scipy's smallest, 2.3e-14.
 
-The error of an integrated scene is *estimated*, not assumed: the run is
-repeated at rtol / 10 at the same points and the difference is the estimate;
-if it exceeds ``tol`` the tolerance is tightened (down to the package's
-2.3e-14), and if no tolerance reaches ``tol`` a ModelError says so with the
-best error available.
+If no candidate reaches ``tol``, a ModelError gives the best error available.
+The result is the usual :class:`~.results.Trajectory` or :class:`~.results.Path`
+with ``choice`` set (a :class:`~.results.Choice`); ``result.explain()`` says
+which model and method were picked and why.  ``model="exact"``,
+``"full"`` or ``"reduced"`` restricts the choice to one model (a figure that
+shows the reduced equation asks for it).
 
 >>> import whittaker_teach as wt
 >>> S = wt.examples.sledge()
->>> sc = scene(S, {"x": 0, "theta": 0.3, "y": 0}, {"x": 1, "theta": 0}, (0, 20),
-...            {"m": 1, "J": 1, "k": 1}, tol=1e-6)
->>> sc.model, round(sc(20.0)["theta"], 6)
-('exact', 0.122425)
->>> print(sc.why)
-exact solution (3.15): a closed form exists for the sledge (error ~1e-15)
+>>> P = {"m": 1, "J": 1, "k": 1}
+>>> tr = S.simulate({"x": 0, "theta": 0.3, "y": 0}, {"x": 1, "theta": 0}, (0, 20), P,
+...                 tol=1e-6)
+>>> tr.choice.model, tr.method, round(tr(20.0)["theta"], 6)
+('exact', 'closed form', 0.122425)
+>>> print(tr.explain())
+exact model, closed form: estimated relative error 1.0e-15 <= tol 1e-06
+why: the closed form (3.15) exists for the sledge: cheaper than any
+  integration (no right-hand side evaluated) and exact to rounding
+
+``scene(system, ...)`` is the same choice returned as a :class:`Scene` (given a
+reduction, it integrates the reduction's system in time, the cheaper model).
 """
 
 from __future__ import annotations
@@ -37,19 +48,355 @@ from __future__ import annotations
 import math
 import textwrap
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import numpy as np
 
 from ..errors import ModelError
 from . import validate
+from .results import Choice, CoordDict, Path, Trajectory
 
-__all__ = ["scene", "Scene", "FLOOR"]
+__all__ = ["scene", "Scene", "simulate_within", "FLOOR", "MIN_RTOL", "ATOL", "EXACT_ERROR"]
 
-#: The smallest relative error the study shows the full model reaching (20 periods).
+#: The smallest relative error the study shows the full model reaching (10 periods).
 FLOOR = 1e-13
+#: The smallest rtol the package accepts (about 100 machine epsilons).
 MIN_RTOL = 2.3e-14
+#: atol of every chosen run: tiny, so that the error control is relative.
+ATOL = 1e-20
+#: The closed form's relative error (the study: 2.1e-15 to 2.4e-15 against 30 digits).
+EXACT_ERROR = 1e-15
+#: Output points of a closed-form trajectory or path when none are asked for.
+POINTS = 1001
 
 
+# ----------------------------------------------------------------- the closed form
+@lru_cache(maxsize=1)
+def _sledge_parts():
+    import whittaker_teach as wt
+    ref = wt.examples.sledge()
+    return ref._L, ref.constraints
+
+
+def has_closed_form(system):
+    """True for the built-in sledge (same Lagrangian and constraint as
+    ``examples.sledge()``): its motion is known in closed form (3.15)."""
+    if [c.func.__name__ for c in system.coordinates] != ["x", "theta", "y"]:
+        return False
+    L, cons = _sledge_parts()
+    return system._L == L and system.constraints == cons
+
+
+def _sledge_values(system, q0, params):
+    """({name: value} of the coordinates, {name: value} of the parameters), checked."""
+    q = validate.initial_values(system, q0, "q0", system.coordinates)
+    p = dict(zip((s.name for s in system.parameters),
+                 validate.parameter_values(system, params)))
+    return {c.func.__name__: val for c, val in q.items()}, p
+
+
+def _exact_from_time(system, q0, qdot0, params, t0):
+    """The SledgeExact through the state (q0, qdot0) at t0, or None (cos theta = 0)."""
+    from .exact import SledgeExact
+    v = validate.initial_values(system, qdot0, "qdot0", system.independent_coordinates,
+                                forbidden=system.dependent_coordinates,
+                                why_forbidden="is a dependent coordinate: its velocity "
+                                "follows from the constraint (1.3)")
+    q, p = _sledge_values(system, q0, params)
+    xd, thd = (v[c] for c in system.independent_coordinates)
+    th = q["theta"]
+    if abs(math.cos(th)) < 1e-8:
+        return None
+    w = p["k"] / math.sqrt(p["J"])
+    return SledgeExact(p, a=math.hypot(th, thd / w), phi=math.atan2(-thd / w, th),
+                       C=xd / math.cos(th), x0=q["x"], y0=q["y"], t0=t0)
+
+
+def _exact_trajectory(system, ex, t_span, t_eval, dense):
+    t = (np.linspace(t_span[0], t_span[1], POINTS) if t_eval is None
+         else np.asarray(t_eval, dtype=float))
+    g = ex(t)
+    names = ["x", "theta", "y"]
+    q = CoordDict((c, g[n]) for c, n in zip(system.coordinates, names))
+    qdot = CoordDict((c, g[n + "dot"]) for c, n in zip(system.coordinates, names))
+    E = ex.energy(g)
+
+    def interp(tt):
+        gg = ex(tt)
+        return [gg[n] for n in names]
+    return Trajectory(t, q, qdot, E, float(E[0]), 0, 0, "closed form", "exact (3.15)",
+                      list(system.coordinates), interp if dense else None)
+
+
+def _exact_from_reduced(red, q0, qp0, h, params, t0):
+    """The SledgeExact through a reduced state of the sledge in x, or None (no closed form
+    for this chart, or the motion reverses x: a >= pi/2)."""
+    from .exact import SledgeExact
+    S = red.system
+    if red._eps.func.__name__ != "x":
+        return None
+    q, p = _sledge_values(S, q0, params)
+    qp = validate.initial_values(S, qp0, "qp0", red._nus)
+    thp = next(iter(qp.values()))
+    th, h = q["theta"], validate.real(h, "h")
+    c = math.cos(th)
+    if abs(c) < 1e-8:
+        return None
+    R = 2 * h - p["k"] ** 2 * th ** 2
+    D = p["m"] / c ** 2 + p["J"] * thp ** 2
+    if not (R > 0 and D > 0):
+        return None                       # the integration reports it (1.12), (1.13)
+    xd = red.direction * math.sqrt(R / D)
+    w = p["k"] / math.sqrt(p["J"])
+    thd = xd * thp
+    a = math.hypot(th, thd / w)
+    if a >= math.pi / 2 - 1e-6:
+        return None                       # x turns back: the reduction meets a turning point
+    return SledgeExact(p, a=a, phi=math.atan2(-thd / w, th), C=xd / c, x0=q["x"],
+                       y0=q["y"], t0=t0)
+
+
+def _t_of_x(ex, s):
+    """The times at which the exact sledge is at x = s (x monotone: a < pi/2), by Newton."""
+    s = np.asarray(s, dtype=float)
+    t = ex.t0 + (s - ex.x0) / ex.drift
+    for _ in range(60):
+        g = ex(t)
+        dt = (g["x"] - s) / g["xdot"]
+        t = t - dt
+        if np.all(np.abs(dt) <= 4e-16 * np.maximum(1.0, np.abs(t))):
+            break
+    return t
+
+
+def _exact_path(red, ex, span, dense):
+    S = red.system
+    s = np.linspace(span[0], span[1], POINTS)
+    t = _t_of_x(ex, s)
+    g = ex(t)
+    names = ["x", "theta", "y"]
+    q = CoordDict((c, g[n] if n != "x" else s) for c, n in zip(S.coordinates, names))
+    (nu,) = red._nus
+    qp = CoordDict([(nu, g["thetadot"] / g["xdot"])])
+
+    def interp(ss):
+        ss = np.asarray(ss, dtype=float)
+        tt = _t_of_x(ex, np.atleast_1d(ss))
+        gg = ex(tt)
+        out = CoordDict()
+        for c, n in zip(S.coordinates, names):
+            v = np.atleast_1d(ss) if n == "x" else gg[n]
+            out[c] = float(v[0]) if ss.ndim == 0 else v
+        out["t"] = float(tt[0]) if ss.ndim == 0 else tt
+        return out
+    return Path(s, t, q, qp, ex.h, 0, 0, "closed form", "x", red.direction,
+                list(S.coordinates), _dense=interp if dense else None)
+
+
+# ----------------------------------------------------------------- integrations
+def _rel_diff(q1, q2):
+    """max over the coordinates of |q1 - q2| / (the coordinate's largest value, at least
+    1e-8 of the largest coordinate)."""
+    big = max(float(np.max(np.abs(v))) for v in q1.values())
+    worst = 0.0
+    for c in q1:
+        scale = max(float(np.max(np.abs(q1[c]))), 1e-8 * big, 1e-300)
+        worst = max(worst, float(np.max(np.abs(np.asarray(q1[c]) - np.asarray(q2[c]))))
+                    / scale)
+    return worst
+
+
+def _ladder(tol):
+    """rtol = tol/10, then ten times tighter each time, down to 10 MIN_RTOL (whose check
+    is a run at MIN_RTOL)."""
+    r = min(max(tol / 10, 10 * MIN_RTOL), 1e-3)
+    out = [r]
+    while r > 10 * MIN_RTOL * 1.0001:
+        r = max(r / 10, 10 * MIN_RTOL)
+        out.append(r)
+    return out
+
+
+def _integrate(run, compare, tol, model, tried):
+    """Climb the ladder: (result, rtol, error) of the first run whose estimated error (its
+    difference from a run ten times tighter) is within tol; (None, best) otherwise.
+    ``run(rtol, check)``: ``check`` is True for the run that only checks another (it
+    may skip the dense output, which costs DOP853 three evaluations a step)."""
+    cache = {}
+
+    def at(r, check):
+        if (r, check) not in cache:
+            cache[r, check] = run(r, check)
+        return cache[r, check]
+    best = None
+    for r in _ladder(tol):
+        res, ref = at(r, False), at(max(r / 10, MIN_RTOL), True)
+        err = compare(res, ref)
+        tried.append((model, "DOP853", r, err, res.nfev))
+        if best is None or err < best[2]:
+            best = (res, r, err)
+        if err <= tol:
+            return res, r, err, (ref.nfev, sum(v.nfev for v in cache.values()))
+    return None, best[1], best[2], None
+
+
+def _no_model(tol, what, model, rtol, err):
+    where = f"the {model}, DOP853 at rtol {rtol:.1e}, against a run at rtol {MIN_RTOL:g}"
+    return ModelError(f"no model reaches the relative error {tol:g} for this {what}: the "
+                      f"best available is about {err:.1e} ({where}, scipy's smallest); ask "
+                      f"for tol >= {2 * err:.0e}")
+
+
+def _exact_reaches(tol):
+    if tol < EXACT_ERROR:
+        raise ModelError(f"no model reaches the relative error {tol:g}: the best available "
+                         f"is the closed form (3.15), about {EXACT_ERROR:.0e} (rounding)")
+
+
+def _check_request(tol, model, allowed, method, rtol, atol):
+    tol = validate.real(tol, "tol")
+    if not 0 < tol < 1:
+        raise ModelError(f"tol = {tol:g} must lie in (0, 1): a relative error")
+    if model is not None and model not in allowed:
+        raise ModelError(f"model = {model!r}: with tol, choose among {', '.join(allowed)} "
+                         "(or None: the cheapest that reaches tol)")
+    if method not in (None, "DOP853") or rtol not in (None, 1e-9) or atol is not None:
+        raise ModelError("pass either tol (the model, the method and rtol are then chosen "
+                         "to reach it) or method/rtol/atol, not both")
+    return tol
+
+
+def simulate_within(obj, *args, tol, model=None, method=None, rtol=None, atol=None,
+                    **options):
+    """``system.simulate(q0, qdot0, t_span, params, tol=...)`` or
+    ``reduction.simulate(q0, qp0, h, span, params, tol=...)``: see the module."""
+    from ..reduction import Reduction
+    if isinstance(obj, Reduction):
+        return _reduced_within(obj, *args, tol=tol, model=model, method=method, rtol=rtol,
+                               atol=atol, **options)
+    return _full_within(obj, *args, tol=tol, model=model, method=method, rtol=rtol,
+                        atol=atol, **options)
+
+
+def _full_within(S, q0, qdot0, t_span, params, *, tol, model, method, rtol, atol,
+                 t_eval=None, dense=None, **options):
+    tol = _check_request(tol, model, ("exact", "full"), method, rtol, atol)
+    if options:
+        raise ModelError(f"with tol, the options {', '.join(sorted(options))} are chosen by "
+                         "the package (it picks the model, the method and the formulation)")
+    t_span = validate.check_span(t_span, "t_span")
+    t_eval = validate.check_t_eval(t_eval, t_span)
+    if dense is None:
+        dense = t_eval is None
+    tried = []
+    if model in (None, "exact") and has_closed_form(S):
+        ex = _exact_from_time(S, q0, qdot0, params, t_span[0])
+        if ex is not None:
+            _exact_reaches(tol)
+            tr = _exact_trajectory(S, ex, t_span, t_eval, dense)
+            tr.choice = Choice("exact", "closed form", None, tol, EXACT_ERROR,
+                               "the closed form (3.15) exists for the sledge: cheaper than "
+                               "any integration (no right-hand side evaluated) and exact to "
+                               "rounding")
+            return tr
+    if model == "exact":
+        raise ModelError(f"model='exact': the {S.name} has no closed form in the package "
+                         "(only the built-in sledge has one)")
+    grid = t_eval if t_eval is not None else np.linspace(t_span[0], t_span[1], POINTS)
+
+    def run(r, check):
+        d = (not check and dense) if t_eval is not None else True
+        return S.simulate(q0, qdot0, t_span, params, method="DOP853", rtol=r, atol=ATOL,
+                          t_eval=t_eval, dense=d)
+
+    def compare(a, b):
+        if t_eval is not None:
+            return _rel_diff(a.q, b.q)
+        return _rel_diff(a(grid), b(grid))
+    tr, r, err, counts = _integrate(run, compare, tol, "full", tried)
+    if tr is None:
+        raise _no_model(tol, S.name, "full model", r, err)
+    closed = ("model='full' was asked; " if model == "full" else
+              "" if not has_closed_form(S) else
+              "the closed form does not apply here (cos theta = 0 at the start); ")
+    tr.choice = Choice("full", "DOP853", r, tol, err, (
+        f"{closed or f'no closed form for the {S.name}; '}the full model in t "
+        f"({tr.formulation} form) with DOP853 is the cheapest integration by evaluations at "
+        f"the study's targets; rtol {r:.1e} is the loosest whose estimated error (against "
+        f"a run at rtol/10) is within tol ({counts[1]} evaluations in all)"), tried, counts[0])
+    if not dense and t_eval is None:
+        tr._dense = None
+    return tr
+
+
+#: the options of Reduction.simulate that a run with tol passes on
+REDUCED_OPTIONS = ("on_turning_point", "turning_tol", "t0", "max_switches", "max_bridge_time")
+
+
+def _reduced_within(red, q0, qp0, h, span, params, *, tol, model, method, rtol, atol,
+                    dense=True, **options):
+    tol = _check_request(tol, model, ("exact", "reduced"), method, rtol, atol)
+    bad = sorted(set(options) - set(REDUCED_OPTIONS))
+    if bad:
+        raise ModelError(f"unknown option(s) {', '.join(bad)} of the reduced model (it takes "
+                         f"{', '.join(REDUCED_OPTIONS)}, dense)")
+    S = red.system
+    span = validate.check_span(span, "span")
+    tried = []
+    if model in (None, "exact") and has_closed_form(S):
+        ex = _exact_from_reduced(red, q0, qp0, h, params, options.get("t0", 0.0))
+        if ex is not None:
+            q = validate.initial_values(S, q0, "q0", S.coordinates)
+            if abs(span[0] - q[red._eps]) > 1e-12 * max(1.0, abs(span[0])):
+                raise ModelError(f"span starts at x = {span[0]} but q0[x] = {q[red._eps]}")
+            if (span[1] - span[0]) * red.direction < 0:
+                raise ModelError(f"span {span} runs against the direction "
+                                 f"{red.direction:+d} of the reduction")
+            _exact_reaches(tol)
+            path = _exact_path(red, ex, span, dense)
+            path.choice = Choice("exact", "closed form", None, tol, EXACT_ERROR,
+                                 "the closed form (3.15) exists for the sledge; along x it "
+                                 "is evaluated at t(x), found by Newton's method on x(t) "
+                                 "(x is monotone: amplitude below pi/2)")
+            return path
+    if model == "exact":
+        raise ModelError(f"model='exact': no closed form for this reduction of the "
+                         f"{S.name} (only the sledge in x with amplitude below pi/2)")
+    grid = np.linspace(span[0], span[1], POINTS)
+
+    def run(r, check):
+        return red.simulate(q0, qp0, h, span, params, method="DOP853", rtol=r, atol=ATOL,
+                            dense=True, **options)
+
+    def compare(a, b):
+        if a._dense is not None and b._dense is not None:
+            pa, pb = a(grid), b(grid)
+            keys = [c for c in S.coordinates] + ["t"]
+            return _rel_diff({k: pa[k] for k in keys}, {k: pb[k] for k in keys})
+        return _rel_diff({c: a.q[c][-1:] for c in S.coordinates} | {"t": a.t[-1:]},
+                         {c: b.q[c][-1:] for c in S.coordinates} | {"t": b.t[-1:]})
+    path, r, err, counts = _integrate(run, compare, tol, "reduced", tried)
+    if path is None:
+        raise _no_model(tol, f"reduction of the {S.name}", "reduced model", r, err)
+    e = red._eps.func.__name__
+    closed = ("the closed form does not apply here (the amplitude reaches pi/2, or q_eps "
+              "is not x); " if has_closed_form(S) else "")
+    lead = (f"model='reduced' was asked: the reduced model (1.26) runs in {e}"
+            if model == "reduced" else
+            f"{closed}a path in {e} is asked, so the reduced model (1.26) runs (the study "
+            "finds the full model in t 1.4-3.3 times cheaper by evaluations down to 1e-12: "
+            "system.simulate(..., tol=...) for a motion in t)")
+    path.choice = Choice("reduced", "DOP853", r, tol, err, (
+        f"{lead}; DOP853, rtol "
+        f"{r:.1e}, the loosest whose estimated error (against a run at rtol/10"
+        f"{'' if path._dense is not None else ', compared at the end point'}) is within "
+        f"tol ({counts[1]} evaluations in all)"), tried, counts[0])
+    if not dense:
+        path._dense = None
+    return path
+
+
+# ----------------------------------------------------------------- scene
 @dataclass
 class Scene:
     """A motion and the reason for its model: ``model`` ('exact' or 'full'),
@@ -77,42 +424,9 @@ class Scene:
         return "\n".join([head] + textwrap.wrap("why: " + self.why, 78))
 
 
-def _is_sledge(S):
-    return (S.name == "sledge" and [c.func.__name__ for c in S.coordinates] == ["x", "theta", "y"]
-            and sorted(p.name for p in S.parameters) == ["J", "k", "m"])
-
-
-def _exact_scene(S, q0, qdot0, t_span, params):
-    from .exact import SledgeExact
-    from .state import initial_state
-    y0, p, _fm = initial_state(S, q0, qdot0, params, "chaplygin")
-    J, k, m = p
-    x, th, y, xd, thd = (float(v) for v in y0)
-    if abs(math.cos(th)) < 1e-8:
-        return None
-    w = k / math.sqrt(J)
-    a = math.hypot(th, thd / w)
-    phi = math.atan2(-thd / w, th)
-    C = xd / math.cos(th)
-    ex = SledgeExact({"m": m, "J": J, "k": k}, a=a, phi=phi, C=C, x0=x, y0=y, t0=t_span[0])
-    t = np.linspace(t_span[0], t_span[1], 1001)
-    g = ex(t)
-    q = {c: g[c] for c in ("x", "theta", "y")}
-    return Scene("exact", "closed form", None, "exact solution (3.15): a closed form exists "
-                 "for the sledge (error ~1e-15)", 1e-15, t, q, 0,
-                 lambda tt: ex(tt))
-
-
-def _rel_diff(q1, q2):
-    worst = 0.0
-    for c in q1:
-        scale = max(float(np.max(np.abs(q1[c]))), 1e-300)
-        worst = max(worst, float(np.max(np.abs(q1[c] - q2[c]))) / scale)
-    return worst
-
-
 def scene(system, q0, qdot0, t_span, params, tol=1e-6, *, points=1001):
-    """The cheapest model and method the study shows reaching ``tol``; see the module."""
+    """The cheapest model and method the study shows reaching ``tol``, as a :class:`Scene`
+    at ``points`` equally spaced times; see the module."""
     from ..reduction import Reduction
     note = ""
     if isinstance(system, Reduction):
@@ -120,39 +434,23 @@ def scene(system, q0, qdot0, t_span, params, tol=1e-6, *, points=1001):
                 "reduced model needs 1.4-3.3x the full model's evaluations, so the full model "
                 "runs; ")
         system = system.system
-    tol = validate.real(tol, "tol")
-    if not 0 < tol < 1:
-        raise ModelError(f"tol = {tol:g} must lie in (0, 1): a relative error")
     t_span = validate.check_span(t_span, "t_span")
-    if _is_sledge(system):
-        sc = _exact_scene(system, q0, qdot0, t_span, params)
-        if sc is not None:
-            sc.why = note + sc.why
-            return sc
     t_eval = np.linspace(t_span[0], t_span[1], points)
-    rtol = min(max(tol / 10, 10 * MIN_RTOL), 1e-3)
-    best = None
-    while True:
-        tr = system.simulate(q0, qdot0, t_span, params, method="DOP853", rtol=rtol, atol=1e-20,
-                             t_eval=t_eval, dense=True)
-        ref = system.simulate(q0, qdot0, t_span, params, method="DOP853",
-                              rtol=max(rtol / 10, MIN_RTOL), atol=1e-20, t_eval=t_eval,
-                              dense=False)
-        err = _rel_diff({c.func.__name__: tr.q[c] for c in system.coordinates},
-                        {c.func.__name__: ref.q[c] for c in system.coordinates})
-        best = err if best is None else min(best, err)
-        if err <= tol:
-            break
-        if rtol <= 10 * MIN_RTOL * 1.0001:     # no tighter reference to check against
-            raise ModelError(f"no model reaches the relative error {tol:g} for this "
-                             f"{system.name}: the best available is about {best:.1e} (the "
-                             f"full model, DOP853 at rtol {rtol:.1e}, against a run at "
-                             f"rtol {MIN_RTOL:g}, the package's smallest); ask for "
-                             f"tol >= {2 * best:.0e}")
-        rtol = max(rtol / 10, 10 * MIN_RTOL)
+    tr = simulate_within(system, q0, qdot0, t_span, params, tol=tol, t_eval=t_eval, dense=True)
+    c = tr.choice
+    q = {k.func.__name__: tr.q[k] for k in system.coordinates}
+    if c.model == "exact":
+        return Scene("exact", "closed form", None, note + "exact solution (3.15): a closed "
+                     "form exists for the sledge (error ~1e-15)", EXACT_ERROR, tr.t, q, 0,
+                     lambda tt: _named(tr(tt)))
+    nfev = tr.nfev + c.check_nfev
     why = (note + f"no closed form for the {system.name}; the full model (formulation "
            f"{tr.formulation}) with DOP853 is the cheapest by evaluations at the study's "
-           f"targets; rtol = {rtol:.0e} (estimated error {err:.0e} <= {tol:g}, against a "
+           f"targets; rtol = {c.rtol:.0e} (estimated error {c.error:.0e} <= {tol:g}, against a "
            "run at rtol/10)")
-    q = {c.func.__name__: tr.q[c] for c in system.coordinates}
-    return Scene("full", "DOP853", rtol, why, err, tr.t, q, tr.nfev + ref.nfev, tr)
+    return Scene("full", "DOP853", c.rtol, why, c.error, tr.t, q, nfev,
+                 lambda tt: _named(tr(tt)))
+
+
+def _named(d):
+    return {(k if isinstance(k, str) else k.func.__name__): v for k, v in d.items()}

@@ -35,12 +35,11 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ModelError
-from . import validate
+from . import codegen, validate
 from .ivp import ARITHMETIC, roots_within_steps, solve
 from .results import CoordDict, Trajectory
-from .state import POLE_TOL, choose_formulation, initial_state
 
-__all__ = ["simulate", "choose_formulation", "initial_state", "POLE_TOL"]
+__all__ = ["simulate"]
 
 
 def _first_pole(fm, sol, p):
@@ -67,50 +66,35 @@ def simulate(system, q0, qdot0, t_span, params, method="DOP853", rtol=1e-9, atol
              formulation="auto", dt=None, t_eval=None, dense=None, max_energy_error=1e-2):
     """Integrate the full model in t; see :meth:`ChaplyginSystem.simulate`.
 
-    ``dense`` (interpolation by ``traj(t)``) defaults to True without ``t_eval``
-    and to False with it: a long run then keeps only the points asked for.
-    ``dt`` and ``max_energy_error`` belong to ``method="DLA"`` (see
+    The input is checked once (:func:`.validate.time_input`), then the compiled
+    model (:func:`.codegen.time_model`, cached) gives the initial state and the
+    right-hand side, and :func:`.ivp.solve` integrates.  ``dense``
+    (interpolation by ``traj(t)``) defaults to True without ``t_eval`` and to
+    False with it: a long run then keeps only the points asked for.  ``dt`` and
+    ``max_energy_error`` belong to ``method="DLA"`` (see
     :func:`~whittaker_teach.numerics.integrators.simulate_dla`)."""
     try:
-        return _simulate(system, q0, qdot0, t_span, params, method, rtol, atol, formulation,
-                         dt, t_eval, dense, max_energy_error)
+        inp = validate.time_input(system, q0, qdot0, t_span, params, method, rtol, atol,
+                                  formulation, dt, t_eval, dense, max_energy_error)
+        if inp.method == "DLA":
+            from .integrators import simulate_dla
+            return simulate_dla(system, inp)
+        return _simulate(system, inp)
     except ARITHMETIC as err:
         raise ModelError(f"{system.name}, time model: the arithmetic failed ({err}); the "
                          "initial state or the parameters are out of the range of floating "
                          "point (too large or too small)") from None
 
 
-def _simulate(system, q0, qdot0, t_span, params, method, rtol, atol, formulation, dt, t_eval,
-              dense, max_energy_error):
-    method = validate.check_method(method)
-    t_span = validate.check_span(t_span, "t_span")
-    formulation = choose_formulation(system, formulation)
-    t_eval = validate.check_t_eval(t_eval, t_span)
-    if dense is None:
-        dense = t_eval is None
-    if method == "DLA":
-        from .integrators import simulate_dla
-        if dt is None:
-            raise ModelError("method 'DLA' is a fixed-step integrator: pass its step dt")
-        if t_eval is not None:
-            raise ModelError("t_eval is not available with the fixed-step method 'DLA': it "
-                             "returns its steps; interpolate with traj(t)")
-        return simulate_dla(system, q0, qdot0, t_span, params, validate.real(dt, "dt"),
-                            dense=dense, max_energy_error=max_energy_error)
-    if dt is not None:
-        raise ModelError(f"dt is the step of the fixed-step method 'DLA'; {method} chooses "
-                         "its own steps (set rtol and atol)")
-    rtol, atol = validate.check_tolerances(rtol, atol)
-    y0, p, fm = initial_state(system, q0, qdot0, params, formulation)
-    poles = formulation == "chaplygin" and fm.poles_np
-    for text, fn in (fm.poles_np if poles else ()):
-        if fn(*y0, *p) == 0:
-            raise ModelError(f"the Chaplygin form (1.4) has a pole at the initial state "
-                             f"({text} = 0); use formulation='multiplier'")
+def _simulate(system, inp):
+    fm = codegen.time_model(system, inp.formulation)
+    y0 = fm.initial_state(inp.q, inp.v, inp.p)
+    p = inp.p
+    poles = fm.formulation == "chaplygin" and fm.poles_np
     what = f"{system.name}, time model"
     try:
-        sol = solve(fm.rhs, fm.jac, t_span, y0, p, method, rtol, atol,
-                    dense=dense or bool(poles), t_eval=t_eval, what=what)
+        sol = solve(fm.rhs, fm.jac, inp.span, y0, p, inp.method, inp.rtol, inp.atol,
+                    dense=inp.dense or bool(poles), t_eval=inp.t_eval, what=what)
     except ModelError as err:
         if poles and getattr(err, "sol", None) is not None:
             hit = _first_pole(fm, err.sol, p)
@@ -121,7 +105,7 @@ def _simulate(system, q0, qdot0, t_span, params, method, rtol, atol, formulation
         hit = _first_pole(fm, sol, p)
         if hit:
             raise _pole_error(system, hit[0], hit[1])
-    return _trajectory(system, fm, sol, p, method, formulation, dense)
+    return _trajectory(system, fm, sol, p, inp.method, fm.formulation, inp.dense)
 
 
 def _trajectory(system, fm, sol, p, method, formulation, dense):

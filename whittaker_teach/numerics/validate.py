@@ -14,18 +14,23 @@ from __future__ import annotations
 
 import math
 import numbers
+from dataclasses import dataclass
 
 from ..errors import ModelError, ModelTypeError
 
 __all__ = ["ROUNDOFF", "SCIPY_METHODS", "FIXED_STEP_METHODS", "coordinate_of", "initial_values",
            "parameter_values", "check_method", "check_tolerances", "check_span", "check_t_eval",
-           "real", "MAX_T_EVAL"]
+           "real", "MAX_T_EVAL", "MIN_RTOL", "MIN_RTOL_TIGHT", "FORMULATIONS", "TimeInput", "time_input", "state_input",
+           "ReducedInput", "reduced_input"]
 
 #: A radicand within ROUNDOFF * (its scale) below zero is round-off of zero: it is
 #: clipped to 0 (a turning point); further below, the state is off the energy surface.
 ROUNDOFF = 64 * 2.220446049250313e-16
 
-SCIPY_METHODS = ("RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA")
+SCIPY_METHODS = ("RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA", "DOP853-tight")
+#: The smallest rtol of scipy's methods (about 100 machine epsilons) and of
+#: "DOP853-tight" (DOP853 allowed below scipy's floor, :class:`.ivp.TightDOP853`).
+MIN_RTOL, MIN_RTOL_TIGHT = 2.3e-14, 4.5e-16
 FIXED_STEP_METHODS = ("DLA",)
 IMPLICIT = ("Radau", "BDF", "LSODA")
 
@@ -133,16 +138,22 @@ def check_method(method):
     if method in SCIPY_METHODS or method in FIXED_STEP_METHODS:
         return method
     raise ModelError(f"unknown method {method!r}: use one of scipy's "
-                     f"{', '.join(SCIPY_METHODS)}, or 'DLA' (the fixed-step discrete "
+                     f"{', '.join(SCIPY_METHODS[:-1])}, 'DOP853-tight' (DOP853 with rtol "
+                     "allowed below scipy's floor) or 'DLA' (the fixed-step discrete "
                      "Lagrange-d'Alembert integrator)")
 
 
-def check_tolerances(rtol, atol):
+def check_tolerances(rtol, atol, method=None):
     """(rtol, atol) as floats; atol=None means atol = rtol."""
     rtol = real(rtol, "rtol")
-    if not 2.3e-14 <= rtol < 1:
+    if method == "DOP853-tight":
+        if not MIN_RTOL_TIGHT <= rtol < 1:
+            raise ModelError(f"rtol = {rtol:g} is outside [{MIN_RTOL_TIGHT:g}, 1) for "
+                             "DOP853-tight: below 2 machine epsilons no step is accepted")
+    elif not MIN_RTOL <= rtol < 1:
         raise ModelError(f"rtol = {rtol:g} is outside [2.3e-14, 1): below about 100 machine "
-                         "epsilons the error estimate is round-off")
+                         "epsilons scipy's error estimate is near round-off (method "
+                         "'DOP853-tight' allows rtol down to 4.5e-16)")
     atol = rtol if atol is None else real(atol, "atol")
     if atol <= 0:
         raise ModelError(f"atol = {atol:g} must be positive")
@@ -187,3 +198,132 @@ def check_t_eval(t_eval, span):
         raise ModelError("t_eval must be strictly increasing (decreasing for a backward "
                          "span), without repeated times")
     return t
+
+
+# ----------------------------------------------------------------- one check per entry
+FORMULATIONS = ("auto", "chaplygin", "multiplier")
+
+
+@dataclass
+class TimeInput:
+    """The checked input of the full model (:func:`time_input`): ``q`` and ``v`` are
+    {coordinate: float} (every coordinate; the independent velocities), ``p`` the
+    parameter values in ``system.parameters`` order."""
+
+    q: dict
+    v: dict
+    p: list
+    span: tuple
+    method: str
+    rtol: float | None
+    atol: float | None
+    formulation: str
+    t_eval: object
+    dense: bool
+    dt: float | None
+    max_energy_error: float | None
+
+
+def state_input(system, q0, qdot0, params):
+    """(q, v, p): the coordinates, the independent velocities and the parameters, checked."""
+    S = system
+    q = initial_values(S, q0, "q0", S.coordinates)
+    v = initial_values(
+        S, qdot0, "qdot0", S.independent_coordinates, forbidden=S.dependent_coordinates,
+        why_forbidden="is a dependent coordinate: its velocity follows from the constraint "
+                      "(1.3); give the velocities of the independent coordinates only")
+    return q, v, parameter_values(S, params)
+
+
+def time_input(system, q0, qdot0, t_span, params, method, rtol, atol, formulation, dt,
+               t_eval, dense, max_energy_error):
+    """Every check of a call of the full model, once, before any code is generated.
+
+    >>> import whittaker_teach as wt
+    >>> S = wt.examples.sledge()
+    >>> inp = time_input(S, {"x": 0, "theta": 0.5, "y": 0}, {"x": 1, "theta": 0}, (0, 1),
+    ...                  {"m": 1, "J": 1, "k": 1}, "DOP853", 1e-9, None, "auto", None, None,
+    ...                  None, 1e-2)
+    >>> inp.span, inp.rtol, inp.atol, inp.dense
+    ((0.0, 1.0), 1e-09, 1e-09, True)
+    """
+    method = check_method(method)
+    span = check_span(t_span, "t_span")
+    if formulation not in FORMULATIONS:
+        raise ModelError(f"unknown formulation {formulation!r}: use 'auto', "
+                         "'chaplygin' (1.4) or 'multiplier' (Lagrange-d'Alembert)")
+    t_eval = check_t_eval(t_eval, span)
+    if dense is None:
+        dense = t_eval is None
+    if method in FIXED_STEP_METHODS:
+        if dt is None:
+            raise ModelError("method 'DLA' is a fixed-step integrator: pass its step dt")
+        if t_eval is not None:
+            raise ModelError("t_eval is not available with the fixed-step method 'DLA': it "
+                             "returns its steps; interpolate with traj(t)")
+        dt = real(dt, "dt")
+        if not dt > 0:
+            raise ModelError(f"dt = {dt} must be positive")
+    elif dt is not None:
+        raise ModelError(f"dt is the step of the fixed-step method 'DLA'; {method} chooses "
+                         "its own steps (set rtol and atol)")
+    else:
+        rtol, atol = check_tolerances(rtol, atol, method)
+    q, v, p = state_input(system, q0, qdot0, params)
+    return TimeInput(q, v, p, span, method, rtol, atol, formulation, t_eval, bool(dense), dt,
+                     max_energy_error)
+
+
+@dataclass
+class ReducedInput:
+    """The checked input of the reduced model (:func:`reduced_input`)."""
+
+    q: dict
+    qp: dict
+    h: float
+    span: tuple
+    p: list
+    method: str
+    rtol: float
+    atol: float
+    on_turning_point: str
+    tau: float
+    t0: float
+    max_bridge_time: float | None
+
+
+def reduced_input(red, q0, qp0, h, span, params, method, rtol, atol, on_turning_point,
+                  turning_tol, t0, max_bridge_time=None):
+    """Every check of a call of the reduced model, once, before any code is generated."""
+    S, eps = red.system, red._eps
+    e = eps.func.__name__
+    if method in FIXED_STEP_METHODS:
+        raise ModelError("'DLA' integrates the full model in time; the reduced model takes "
+                         "a scipy method (DOP853, RK45, Radau, LSODA, ...)")
+    method = check_method(method)
+    rtol, atol = check_tolerances(rtol, atol, method)
+    if on_turning_point not in ("raise", "switch"):
+        raise ModelError(f"on_turning_point must be 'raise' or 'switch', got "
+                         f"{on_turning_point!r}")
+    q = initial_values(S, q0, "q0", S.coordinates)
+    qp = initial_values(
+        S, qp0, "qp0", red._nus, forbidden=[eps] + S.dependent_coordinates,
+        why_forbidden=f"has no slope here: qp0 holds dq_nu/d{e} for the coordinates "
+                      f"{', '.join(c.func.__name__ for c in red._nus)} only (q_eps = {e}; "
+                      "the dependent coordinates follow from the constraints, 1.23)")
+    h = real(h, "h")
+    a, b = check_span(span, "span")
+    if abs(a - q[eps]) > 1e-12 * max(1.0, abs(a)):
+        raise ModelError(f"span starts at {e} = {a} but q0[{e}] = {q[eps]}")
+    if (b - a) * red.direction < 0:
+        raise ModelError(f"span ({a}, {b}) runs against the direction {red.direction:+d} of "
+                         f"the reduction (the sign of qdot_{e}); use "
+                         f"system.reduce('{e}', direction={-red.direction})")
+    p = parameter_values(S, params)
+    tau = real(turning_tol, "turning_tol")
+    if not 0 < tau < 0.25:
+        raise ModelError(f"turning_tol = {tau} must lie in (0, 0.25)")
+    if max_bridge_time is not None:
+        max_bridge_time = real(max_bridge_time, "max_bridge_time")
+    return ReducedInput(q, qp, h, (a, b), p, method, rtol, atol, on_turning_point, tau,
+                        real(t0, "t0"), max_bridge_time)

@@ -13,6 +13,13 @@ relative in every component).  A (model, method) stops going tighter after a
 run that needed more than :data:`NFEV_BUDGET` right-hand-side evaluations: a
 budget in evaluations, the same on every machine, never in seconds.
 
+Below that, the method ``DOP853-tight`` (DOP853 with rtol allowed below
+scipy's floor of 100 machine epsilons, :class:`.ivp.TightDOP853`) continues the
+ladders of the full, full (1.4) and reduced models with :data:`TIGHT_RTOLS`
+(1e-14 down to 5e-16): it shows where the error floor of each model lies
+when the tolerance no longer sets it (``tight=False`` leaves it out; the
+quick study does).
+
 **The error** of a run is measured at its own steps against the exact
 solution, per component and relative to the component's scale: theta against
 the amplitude a, x and y against their largest exact values over the run, t
@@ -62,7 +69,7 @@ from ..errors import ModelError
 
 __all__ = ["study", "cheapest", "floors", "table", "summary", "summary_rows", "plot", "main",
            "to_csv", "handwritten_full", "AMPLITUDES", "METHODS", "RTOLS", "TARGETS", "ATOL",
-           "NFEV_BUDGET", "MODELS"]
+           "NFEV_BUDGET", "MODELS", "TIGHT", "TIGHT_RTOLS"]
 
 AMPLITUDES = (0.3, 1.5)
 METHODS = ("RK45", "DOP853", "Radau", "LSODA")
@@ -70,6 +77,11 @@ METHODS = ("RK45", "DOP853", "Radau", "LSODA")
 #: cheapest methods of the full model)
 SHORT_METHODS = ("DOP853", "LSODA")
 RTOLS = (1e-3, 1e-5, 1e-7, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 2.3e-14)
+#: DOP853 below scipy's rtol floor (:class:`.ivp.TightDOP853`), and its ladder
+TIGHT = "DOP853-tight"
+TIGHT_RTOLS = (1e-14, 5e-15, 2e-15, 1e-15, 5e-16)
+#: the models whose ladders DOP853-tight continues
+TIGHT_MODELS = ("full", "full (1.4)", "reduced")
 #: atol for every run: tiny, so that the error control is relative in every component
 ATOL = 1e-20
 DLA_STEPS = (16, 32, 64, 128, 256, 512)
@@ -84,7 +96,7 @@ MODELS = ("full", "full (1.4)", "reduced", "DLA", "numpy+scipy", "exact")
 
 #: ``--quick``: 5 periods, four tolerances, no Radau (the slowest), 3 interleaved repeats
 QUICK = {"periods": 5, "rtols": (1e-4, 1e-7, 1e-10, 1e-13), "dla_steps": (32, 128),
-         "repeat": 3, "methods": ("RK45", "DOP853", "LSODA")}
+         "repeat": 3, "methods": ("RK45", "DOP853", "LSODA"), "tight": False}
 
 
 # ----------------------------------------------------------------- the errors
@@ -233,18 +245,24 @@ def exact_errors(rec, abs_error, x_scale, y_scale):
 
 
 # ----------------------------------------------------------------- the run set
-def _ladder(amplitudes, methods, rtols, dla_steps, alternatives):
+def _ladder(amplitudes, methods, rtols, dla_steps, alternatives, tight=False):
     """[(a, model, method, [settings])]: every (model, method) with its ladder."""
     out = []
     for a in amplitudes:
         for m in methods:
             out.append((a, "full", m, list(rtols)))
+        if tight:
+            out.append((a, "full", TIGHT, list(TIGHT_RTOLS)))
         if alternatives:
             for m in SHORT_METHODS:
                 if m in methods:
                     out.append((a, "full (1.4)", m, list(rtols)))
+            if tight:
+                out.append((a, "full (1.4)", TIGHT, list(TIGHT_RTOLS)))
         for m in methods:
             out.append((a, "reduced", m, list(rtols)))
+        if tight:
+            out.append((a, "reduced", TIGHT, list(TIGHT_RTOLS)))
         for m in methods:
             if m in SHORT_METHODS:
                 out.append((a, "numpy+scipy", m, list(rtols)))
@@ -255,7 +273,7 @@ def _ladder(amplitudes, methods, rtols, dla_steps, alternatives):
 
 
 def study(quick=False, progress=True, amplitudes=AMPLITUDES, methods=None, rtols=None,
-          dla_steps=None, periods=None, repeat=None, alternatives=True):
+          dla_steps=None, periods=None, repeat=None, alternatives=True, tight=None):
     """Run the study: {"meta": ..., "runs": [record, ...], "exact_cost": ...}.
 
     First pass: every run of the fixed set once (errors, evaluations; the
@@ -263,7 +281,8 @@ def study(quick=False, progress=True, amplitudes=AMPLITUDES, methods=None, rtols
     same runs in the same order; each run's ``seconds`` is the median."""
     import whittaker_teach as wt
     cfg = QUICK if quick else {"periods": PERIODS, "rtols": RTOLS, "dla_steps": DLA_STEPS,
-                               "repeat": REPEAT, "methods": METHODS}
+                               "repeat": REPEAT, "methods": METHODS, "tight": True}
+    tight = cfg.get("tight", False) if tight is None else tight
     methods = cfg["methods"] if methods is None else methods
     periods = cfg["periods"] if periods is None else periods
     rtols = cfg["rtols"] if rtols is None else rtols
@@ -272,7 +291,7 @@ def study(quick=False, progress=True, amplitudes=AMPLITUDES, methods=None, rtols
     S = wt.examples.sledge()
     red = S.reduce("x", +1)
     cases = {a: _Case(S, red, a, periods) for a in amplitudes}
-    ladder = _ladder(amplitudes, methods, rtols, dla_steps, alternatives)
+    ladder = _ladder(amplitudes, methods, rtols, dla_steps, alternatives, tight)
     bar = _progress(sum(len(s) for *_, s in ladder) * (1 + repeat), progress)
     runs, fns = [], []
     for a, model, method, settings in ladder:
@@ -311,7 +330,9 @@ def study(quick=False, progress=True, amplitudes=AMPLITUDES, methods=None, rtols
             case = cases[rec["amplitude"]]
             exact_errors(rec, _exact_error(case.ex, case.T), case.x_scale, case.y_scale)
             costs[str(rec["amplitude"])] = {"grid1000": rec["seconds"]}
-    return {"meta": _meta(periods, repeat, amplitudes, rtols), "runs": runs,
+    meta = _meta(periods, repeat, amplitudes, rtols)
+    meta["tight_rtols"] = list(TIGHT_RTOLS) if tight else []
+    return {"meta": meta, "runs": runs,
             "exact_cost": costs}
 
 
@@ -426,8 +447,8 @@ def _setting(r):
 def table(results):
     """Every run as a text table (80 columns), one block per amplitude."""
     lines = []
-    head = (f"{'model':11s} {'method':7s} {'setting':>8s} {'theta':>7s} {'x':>7s} {'y':>7s} "
-            f"{'t':>7s} {'nfev':>7s} {'ms':>8s}")
+    head = (f"{'model':11s} {'method':12s} {'setting':>10s} {'theta':>6s} {'x':>6s} "
+            f"{'y':>6s} {'t':>6s} {'nfev':>6s} {'ms':>7s}")
     for a in results["meta"]["amplitudes"]:
         lines += [f"amplitude a = {a:g} (errors relative to each component's scale)", head]
         for r in results["runs"]:
@@ -435,12 +456,12 @@ def table(results):
                 continue
             meth = r["method"] if r["model"] != "exact" else "-"
             if "failed" in r:
-                lines.append(f"{r['model']:11s} {meth:7s} {_setting(r):>8s}  failed: "
+                lines.append(f"{r['model']:11s} {meth:12s} {_setting(r):>10s}  failed: "
                              f"{r['failed'][:40]}")
                 continue
-            lines.append(f"{r['model']:11s} {meth:7s} {_setting(r):>8s} "
-                         f"{r['err_theta']:7.0e} {r['err_x']:7.0e} {r['err_y']:7.0e} "
-                         f"{r['err_t']:7.0e} {r['nfev']:7d} {1e3 * r['seconds']:8.2f}")
+            lines.append(f"{r['model']:11s} {meth:12s} {_setting(r):>10s} "
+                         f"{r['err_theta']:6.0e} {r['err_x']:6.0e} {r['err_y']:6.0e} "
+                         f"{r['err_t']:6.0e} {r['nfev']:6d} {1e3 * r['seconds']:7.1f}")
         lines.append("")
     return "\n".join(lines)
 
@@ -484,7 +505,7 @@ def summary(results, targets=TARGETS):
                     lines.append(f"    {model:11s} not reached")
                     continue
                 meth = "" if model == "exact" else f"{r['method']} {_setting(r)}"
-                lines.append(f"    {model:11s} {meth:18s} err {r['error']:7.1e}  nfev "
+                lines.append(f"    {model:11s} {meth:20s} err {r['error']:7.1e}  nfev "
                              f"{r['nfev']:6d}  {1e3 * r['seconds']:8.2f} ms")
             ratio = _ratio(by_time[a][tgt]) if tgt != "floor" else None
             if ratio is not None:
@@ -529,7 +550,7 @@ def plot(results, path=None, targets=TARGETS):
     with plt.rc_context({"font.size": 10}):
         fig, axes = plt.subplots(1, len(amps), figsize=(3.75 * len(amps), 5.6), squeeze=False,
                                  sharey=True)
-        colors = {m: f"C{i}" for i, m in enumerate(METHODS)}
+        colors = {m: f"C{i}" for i, m in enumerate(METHODS + (TIGHT,))}
         for ax, a in zip(axes[0], amps):
             done = [r for r in _done(results) if r["amplitude"] == a]
             for model in MODELS:
@@ -556,7 +577,9 @@ def plot(results, path=None, targets=TARGETS):
             ax.grid(True, which="major", color="0.92", zorder=0)
             ax.set_axisbelow(True)
         axes[0][0].set_ylabel("largest relative error (θ, x, y, t)")
-        handles = [Line2D([], [], color=colors[m], lw=2, label=m) for m in METHODS]
+        shown = {r["method"] for r in _done(results)}
+        handles = [Line2D([], [], color=colors[m], lw=2, label=m) for m in METHODS + (TIGHT,)
+                   if m in shown]
         handles += [Line2D([], [], color="0.3", ls=STYLE[k][0] or "none", marker=STYLE[k][1],
                            ms=5 if k != "exact" else 10, label=LABEL[k]) for k in MODELS]
         handles.append(Line2D([], [], ls="none", marker="o", ms=11, mfc="none", mec="k",
