@@ -13,7 +13,8 @@
 #   make clean      remove everything generated
 #
 # Pieces of `make test` can be run alone: unit, doctest, nbval, site, lite, pdf, browser;
-# `make slow` runs the slow tests (not in `make test`).
+# `make slow` runs the slow tests (not in `make test`); `make screenshots` takes
+# whole-page screenshots of the built site at 1280 and 390 px.
 
 SHELL := /bin/bash
 .SHELLFLAGS := -eu -o pipefail -c
@@ -40,10 +41,10 @@ NOTEBOOK_DIRS := book exercises
 
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 
-.PHONY: help setup sysdeps mathjax lite-fetch lite serve bench-lite book site pdf derive test unit slow doctest nbval browser notebooks exercises bench clean
+.PHONY: help setup sysdeps mathjax lite-fetch lite serve bench-lite book site pdf derive test unit slow doctest nbval browser screenshots notebooks exercises bench clean
 
 help:
-	@sed -n '3,17p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,18p' Makefile | sed 's/^# \{0,1\}//'
 
 # ---------------------------------------------------------------- set-up
 setup: $(SETUP_STAMP) mathjax lite-fetch
@@ -152,6 +153,11 @@ pdf-after-site: setup sysdeps
 # one test per page load (tests/book/test_site.py), spread over the workers.
 browser: setup sysdeps
 	WT_REQUIRE_SITE=1 WT_REQUIRE_PDF=1 $(PYTHON) -m pytest tests/book -q $(XDIST)
+
+# Whole-page screenshots of every page at 1280 and 390 px into _build/screenshots/
+# (the browser test keeps only each page's first screen), with the same checks.
+screenshots: setup sysdeps
+	WT_REQUIRE_SITE=1 WT_FULL_SCREENSHOTS=1 $(PYTHON) -m pytest tests/book/test_site.py -q $(XDIST)
 
 # ---------------------------------------------------------------- notebooks
 notebooks: setup

@@ -25,8 +25,11 @@ Playwright's sync API; ``playwright install`` is never needed. Checks:
   rendered text outside maths and code; the page does not scroll sideways;
   no console error.
 
-A full-page screenshot of every page at both widths is written to
-``_build/screenshots/<page>-<width>.png`` for a person to look at, and the
+A screenshot of every page at both widths is written to
+``_build/screenshots/<page>-<width>.png`` for a person to look at: the first
+screen a reader sees, or the whole page with ``WT_FULL_SCREENSHOTS=1``
+(``make screenshots``; a whole page of chapter 4 is about 30,000 px tall and
+costs more than all the checks), and the
 counts of what was checked to ``_build/screenshots/summary.json`` (one
 ``summary-<worker>.json`` per pytest-xdist worker: ``conftest.py`` adds them up
 and prints them at the end of the run).
@@ -75,6 +78,7 @@ VIEWPORTS = {1280: (1280, 900), 390: (390, 844)}
 SCREENSHOTS = Path(os.environ.get("WT_SCREENSHOT_DIR", ROOT / "_build" / "screenshots"))
 LAYOUT_JS = (Path(__file__).with_name("layout_checks.js")).read_text(encoding="utf-8")
 REQUIRED = os.environ.get("WT_REQUIRE_SITE") == "1"
+FULL_SCREENSHOTS = os.environ.get("WT_FULL_SCREENSHOTS") == "1"
 
 pytestmark = pytest.mark.browser
 
@@ -256,7 +260,7 @@ class PageVisit:
             self.screenshot = SCREENSHOTS / f"{self.final_rel.removesuffix('.html').replace('/', '--')}-{width}.png"
             self.screenshot.parent.mkdir(parents=True, exist_ok=True)
             self.timings["settled"] = time.monotonic() - t0
-            page.screenshot(path=str(self.screenshot), full_page=True)
+            page.screenshot(path=str(self.screenshot), full_page=FULL_SCREENSHOTS)
             self.timings["screenshot"] = time.monotonic() - t0
             # then with every fold open: what is inside must fit as well
             page.evaluate(_UNFOLD_JS)
