@@ -174,12 +174,12 @@ def whittaker_forms(red):
     out = []
     for c in red._nus:
         S, Ls, qp, q, x, pr = _pieces(red, c)
-        e = TotalD(tidy(Ls.diff(qp), pr), x) - tidy(Ls.diff(q), pr)
+        e = TotalD(tidy(red._d(Ls, qp), pr), x) - tidy(red._d(Ls, q), pr)
         for P, qs in zip(red._Pstar, red._qdstar):
             # - P (d/dx(dq*/dq') - dq*/dq), written term by term so that equal terms of
             # opposite sign cancel as built (the sledge's m tan(theta)(1 + tan^2 theta))
-            inner, P = qs.diff(qp), tidy(P, pr)
-            e += P * tidy(qs.diff(q), pr)
+            inner, P = red._d(qs, qp), tidy(P, pr)
+            e += P * tidy(red._d(qs, q), pr)
             if inner != 0:
                 e -= P * TotalD(tidy(inner, pr), x)
         out.append(e)
@@ -209,10 +209,10 @@ def total_derivative_form(red):
     the partial derivatives tidied."""
     S, Ls, pr = red.system, red._Lstar, _primes(red)
     x = S.q[red._eps]
-    terms = [tidy(Ls.diff(x), pr)]
+    terms = [tidy(red._d(Ls, x), pr)]
     for c in red._nus:
-        terms += [tidy(Ls.diff(red._qp[c]), pr) * red._qpp[c],
-                  tidy(Ls.diff(S.q[c]), pr) * red._qp[c]]
+        terms += [tidy(red._d(Ls, red._qp[c]), pr) * red._qpp[c],
+                  tidy(red._d(Ls, S.q[c]), pr) * red._qp[c]]
     return sp.Add(*terms)
 
 
@@ -225,9 +225,9 @@ def nielsen_forms(red):
     out = []
     for c in red._nus:
         S, Ls, qp, q, x, pr = _pieces(red, c)
-        e = tidy(dL.diff(qp), pr + [red._qpp[c]]) - 2 * tidy(Ls.diff(q), pr)
+        e = tidy(red._d(dL, qp), pr + [red._qpp[c]]) - 2 * tidy(red._d(Ls, q), pr)
         for P, qs in zip(red._Pstar, red._qdstar):
             P = tidy(P, pr)
-            e += 2 * P * tidy(qs.diff(q), pr) - P * tidy(red._D(qs).diff(qp), pr)
+            e += 2 * P * tidy(red._d(qs, q), pr) - P * tidy(red._d(red._D(qs), qp), pr)
         out.append(e)
     return out
