@@ -50,7 +50,7 @@ from .errors import ModelError, ModelTypeError, guarded
 from .reduction import Reduction
 from .rewrite import collected, rational
 from .steps import Derivation, Report, Step, eq
-from .verify import DPS, check_identity, check_zero, shared_points
+from .verify import DPS, Unevaluable, check_identity, check_zero, evaluate, shared_points
 
 __all__ = ["ChaplyginSystem"]
 
@@ -326,16 +326,20 @@ class ChaplyginSystem:
                 for k, v in self._tidy_accelerations().items()}
 
     def _require_regular(self, M, what, sample):
-        fn = sp.lambdify(sorted(M.free_symbols, key=str), M, modules="mpmath", docstring_limit=0)
-        syms = sorted(M.free_symbols, key=str)
         rng = random.Random(7)
+        rows = M.tolist()
         with mpmath.workdps(DPS):
             for _ in range(3):
-                pt = sample(rng)
+                memo = {s: mpmath.mpf(v) if isinstance(v, (int, float)) else v
+                        for s, v in sample(rng).items()}
                 try:
-                    d = mpmath.det(mpmath.matrix(fn(*[pt[s] for s in syms])))
-                except (ZeroDivisionError, ValueError):
+                    d = mpmath.det(mpmath.matrix([[evaluate(e, memo) for e in row]
+                                                  for row in rows]))
+                except (ZeroDivisionError, ValueError, OverflowError, TypeError):
                     continue
+                except (Unevaluable, KeyError) as err:
+                    raise ModelError(f"{what} cannot be evaluated numerically to check that "
+                                     f"it is regular (1.4): {err}") from err
                 if abs(d) > mpmath.mpf(10) ** (-DPS // 2):
                     return
         raise ModelError(f"singular kinetic energy: {what} is singular, so the accelerations "
