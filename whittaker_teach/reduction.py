@@ -420,7 +420,8 @@ class Reduction:
                        [eq(d("L^*", qs[c]), self._d(Ls, qs[c])) for c in sig], check_identity(
             "1.20", r"$\partial L^*/\partial q_\sigma = (1/\dot q_\varepsilon)\,\partial\Omega/"
             r"\partial q_\sigma$ (the OCR prints $1/\dot q_\sigma$)",
-            [self._d(Ls, qs[c]) for c in sig], [self._star(self._d(Om, qs[c]) / v) for c in sig], smp)))
+            [self._d(Ls, qs[c]) for c in sig],
+            [self._star(self._d(Om, qs[c]) / v) for c in sig], smp)))
         st.append(Step("1.21", "with (1.8) and (1.9)", lambda: [
             eq(LS(qp[c]), partial("L̃", r"\tilde{L}", S.qd[c])) for c in nus] + [
             eq(LS(qs[c]), partial("L̃", r"\tilde{L}", qs[c]) / v) for c in sig], check_identity(
