@@ -157,6 +157,28 @@ def _has(e, s, memo):
     return r
 
 
+_SINGULAR = object()
+
+
+def _singular(e, memo):
+    """True when ``e`` contains an infinity or NaN, or a symbol assumed zero or infinite:
+    only then can SymPy find a factor infinite (``is_finite`` False) or a base zero, so
+    that a product with 0 is not 0.  Otherwise the zero terms of SymPy's rules are left
+    out without building them (building them asks SymPy's assumptions about every
+    factor, which costs a walk over a large sum each time)."""
+    key = (_SINGULAR, e)
+    r = memo.get(key)
+    if r is None:
+        if isinstance(e, sp.Symbol):
+            r = bool(e.is_zero or e.is_finite is False)
+        elif not e.args:
+            r = bool(e.is_number and e.is_finite is not True)    # oo, zoo, nan
+        else:
+            r = any(_singular(a, memo) for a in e.args)
+        memo[key] = r
+    return r
+
+
 _PLAIN = {}
 
 
@@ -187,12 +209,18 @@ def _d(e, s, memo):
     elif t is sp.Mul:
         args, terms = e.args, []
         for i, a in enumerate(args):
-            terms.append(sp.Mul(*(args[:i] + (_d(a, s, memo),) + args[i + 1:])))
+            da = _d(a, s, memo)
+            if da is sp.S.Zero and not _singular(e, memo):
+                continue                  # Mul(..., 0, ...) is 0: no factor is infinite
+            terms.append(sp.Mul(*(args[:i] + (da,) + args[i + 1:])))
         r = sp.Add(*terms)
     elif t is sp.Pow:
         from sympy import log
         dbase, dexp = _d(e.base, s, memo), _d(e.exp, s, memo)
-        r = e * (dexp * log(e.base) + dbase * e.exp / e.base)
+        if dexp is sp.S.Zero and not _singular(e.base, memo):
+            r = e * (dbase * e.exp / e.base)      # 0*log(base) is 0: base is not 0 or infinite
+        else:
+            r = e * (dexp * log(e.base) + dbase * e.exp / e.base)
     elif _plain_function(t):
         from sympy.core.function import ArgumentIndexError
         terms = []

@@ -43,3 +43,16 @@ def test_diff_other_nodes_fall_back_to_sympy():
         assert dag.diff(e, x) == e.diff(x)
     with pytest.raises(TypeError, match="Symbol"):
         dag.diff(x, f(x))
+
+
+def test_diff_products_with_zero_derivatives_match_sympy():
+    """Zero terms are left out only when no factor can be infinite; with a symbol assumed
+    zero or infinite, or an infinity in the expression, SymPy's own terms are built."""
+    x, y = sp.symbols("x y")
+    z0, inf = sp.Symbol("z0", zero=True), sp.Symbol("w", infinite=True)
+    big = sp.expand((1 + x / 3 + y / 5)**12)
+    for e in (sp.sqrt(big) * sp.cos(y) / (1 + x), sp.log(y) * inf * x, x * y / z0,
+              sp.Pow(big, sp.Rational(3, 2)) * inf, sp.Pow(z0 + y, -1) * x, sp.Pow(inf, y) * x,
+              sp.Mul(sp.zoo, x, y, evaluate=False), x**y * sp.sin(x)):
+        for s_ in (x, y):
+            assert dag.diff(e, s_) == e.diff(s_)
