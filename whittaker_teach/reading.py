@@ -64,9 +64,10 @@ BASE_EXPAND_LIMIT = 200
 def powers_combined(expr):
     """In every product, powers of the same base (equal after ``expand``) are merged:
     sqrt(A)*A -> A**(3/2).  Exact: x**a * x**b = x**(a + b) for every base with the
-    principal branch.  Only bases of at most ``BASE_EXPAND_LIMIT`` nodes are
-    expanded to compare them (larger ones are compared as written): the cost stays
-    bounded on a large system.
+    principal branch.  Only bases of at most ``BASE_EXPAND_LIMIT`` nodes, whose
+    expansion is estimated at most as many terms, are expanded to compare them
+    (others are compared as written, such as 2h - (1 + x/3 + theta/5)**40): the cost
+    stays bounded on a large system.
 
     >>> a, b = sp.symbols("a b")
     >>> A = a**2 + b
@@ -79,7 +80,8 @@ def powers_combined(expr):
         groups, order = {}, []
         for f in sp.Mul.make_args(m):
             b, e = f.as_base_exp()
-            small = isinstance(b, sp.Add) and tree_size(b, BASE_EXPAND_LIMIT) <= BASE_EXPAND_LIMIT
+            small = (isinstance(b, sp.Add) and tree_size(b, BASE_EXPAND_LIMIT) <= BASE_EXPAND_LIMIT
+                     and expanded_terms(b, BASE_EXPAND_LIMIT) <= BASE_EXPAND_LIMIT)
             key = sp.expand(b) if small else b
             if key not in groups:
                 order.append(key)

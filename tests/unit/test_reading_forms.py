@@ -87,3 +87,18 @@ def test_total_derivative_prints_d_dx():
     x, f = sp.symbols("x f")
     assert sp.latex(R.TotalD(f, x)) == r"\frac{d}{d x}\left(f\right)"
     assert "d/dx" in sp.pretty(R.TotalD(f, x), use_unicode=True)
+
+
+def test_powers_combined_does_not_expand_a_swelling_base(monkeypatch):
+    """A base small as written but large expanded (2h - (1 + x/3)**40) is compared as
+    written: merging its powers never expands it (that took 90 s on the issue's
+    unexpanded (1 + x/3 + theta/5)**40 potential)."""
+    x, h = sp.symbols("x h")
+    B = 2 * h - (1 + x / 3)**40
+    real_expand = sp.expand
+
+    def guarded_expand(e, *a, **k):
+        assert not e.has((1 + x / 3)**40), "a swelling base was expanded"
+        return real_expand(e, *a, **k)
+    monkeypatch.setattr(sp, "expand", guarded_expand)
+    assert R.powers_combined(sp.sqrt(B) * sp.Mul(B, x, evaluate=False)) == x * B**sp.Rational(3, 2)
