@@ -14,11 +14,13 @@ counting at a bound (:func:`tree_size`).
 sin(3*y)**2 + cos(3*y)
 >>> tree_size(e, 100)
 11
+>>> diff(e, x) == e.diff(x)
+True
 """
 
 import sympy as sp
 
-__all__ = ["tree_size", "substitute", "max_depth", "expanded_terms"]
+__all__ = ["tree_size", "substitute", "max_depth", "expanded_terms", "diff"]
 
 
 def tree_size(expr, limit):
@@ -107,3 +109,132 @@ def expanded_terms(expr, limit):
             memo[e] = r
         return r
     return terms(expr)
+
+
+def diff(expr, s, memo=None):
+    """``expr.diff(s)`` for a Symbol ``s``, the same expression SymPy builds, with each
+    distinct subexpression differentiated once (``memo``, a dict, may be shared between
+    calls: it is keyed by the subexpression and the symbol).
+
+    SymPy's ``diff`` walks the whole tree below every node it differentiates (its
+    ``free_symbols`` test and the ``Derivative`` clean-up after each step), so its
+    cost grows with the square of a large expression's size and is paid again for
+    every repetition of a shared subexpression.  Here sums, products, powers and
+    functions whose derivative is the chain rule over ``fdiff`` are differentiated
+    by SymPy's own rules (``Add``: the sum of the derivatives; ``Mul``: the Leibniz
+    rule as ``Mul._eval_derivative_n_times`` writes it; ``Pow``:
+    ``Pow._eval_derivative``; a function: ``Function._eval_derivative``), so the
+    result is identical to SymPy's; any other node is left to SymPy's ``diff``.
+
+    >>> x, y = sp.symbols("x y")
+    >>> e = sp.sqrt(x**2 + y) * sp.cos(x*y) / (1 + x)
+    >>> diff(e, x) == e.diff(x), diff(e, sp.Symbol("z"))
+    (True, 0)
+    """
+    if not isinstance(s, sp.Symbol):
+        raise TypeError("dag.diff differentiates with respect to a Symbol")
+    memo = {} if memo is None else memo
+    return _d(sp.sympify(expr), s, memo)
+
+
+_HAS = object()
+
+
+def _has(e, s, memo):
+    """``s in e.free_symbols``, each distinct subexpression visited once."""
+    key = (_HAS, e, s)
+    r = memo.get(key)
+    if r is None:
+        if isinstance(e, sp.Symbol):
+            r = e == s
+        elif not e.args:
+            r = False
+        elif type(e) in (sp.Add, sp.Mul, sp.Pow) or _plain_function(type(e)):
+            r = any(_has(a, s, memo) for a in e.args)
+        else:
+            r = s in e.free_symbols
+        memo[key] = r
+    return r
+
+
+_SINGULAR = object()
+
+
+def _singular(e, memo):
+    """True when ``e`` contains an infinity or NaN, or a symbol assumed zero or infinite:
+    only then can SymPy find a factor infinite (``is_finite`` False) or a base zero, so
+    that a product with 0 is not 0.  Otherwise the zero terms of SymPy's rules are left
+    out without building them (building them asks SymPy's assumptions about every
+    factor, which costs a walk over a large sum each time)."""
+    key = (_SINGULAR, e)
+    r = memo.get(key)
+    if r is None:
+        if isinstance(e, sp.Symbol):
+            r = bool(e.is_zero or e.is_finite is False)
+        elif not e.args:
+            r = bool(e.is_number and e.is_finite is not True)    # oo, zoo, nan
+        else:
+            r = any(_singular(a, memo) for a in e.args)
+        memo[key] = r
+    return r
+
+
+_PLAIN = {}
+
+
+def _plain_function(cls):
+    """True for a function class differentiated by ``Function._eval_derivative`` (the
+    chain rule over ``fdiff``), such as sin, cos, tan, exp, log."""
+    r = _PLAIN.get(cls)
+    if r is None:
+        from sympy.core.basic import Basic
+        r = _PLAIN[cls] = (issubclass(cls, sp.Function)
+                           and cls._eval_derivative is sp.Function._eval_derivative
+                           and cls._eval_derivative_n_times is Basic._eval_derivative_n_times)
+    return r
+
+
+def _d(e, s, memo):
+    key = (e, s)
+    r = memo.get(key)
+    if r is not None:
+        return r
+    t = type(e)
+    if not _has(e, s, memo):
+        r = sp.S.Zero
+    elif isinstance(e, sp.Symbol):
+        r = sp.S.One
+    elif t is sp.Add:
+        r = sp.Add(*[_d(a, s, memo) for a in e.args])
+    elif t is sp.Mul:
+        args, terms = e.args, []
+        for i, a in enumerate(args):
+            da = _d(a, s, memo)
+            if da is sp.S.Zero and not _singular(e, memo):
+                continue                  # Mul(..., 0, ...) is 0: no factor is infinite
+            terms.append(sp.Mul(*(args[:i] + (da,) + args[i + 1:])))
+        r = sp.Add(*terms)
+    elif t is sp.Pow:
+        from sympy import log
+        dbase, dexp = _d(e.base, s, memo), _d(e.exp, s, memo)
+        if dexp is sp.S.Zero and not _singular(e.base, memo):
+            r = e * (dbase * e.exp / e.base)      # 0*log(base) is 0: base is not 0 or infinite
+        else:
+            r = e * (dexp * log(e.base) + dbase * e.exp / e.base)
+    elif _plain_function(t):
+        from sympy.core.function import ArgumentIndexError
+        terms = []
+        for i, a in enumerate(e.args, 1):
+            da = _d(a, s, memo)
+            if da.is_zero:
+                continue
+            try:
+                df = e.fdiff(i)
+            except ArgumentIndexError:
+                df = sp.Function.fdiff(e, i)
+            terms.append(df * da)
+        r = sp.Add(*terms)
+    else:
+        r = e.diff(s)
+    memo[key] = r
+    return r

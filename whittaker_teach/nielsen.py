@@ -30,9 +30,9 @@ def nielsen(red):
         eqs = []
         for c in red._nus:
             qp, q = red._qp[c], S.q[c]
-            e = dL.diff(qp) - 2 * Ls.diff(q)                                     # (2.4)
+            e = red._d(dL, qp) - 2 * red._d(Ls, q)                               # (2.4)
             for P, qs, d in zip(red._Pstar, red._qdstar, dq):
-                e -= P * (d.diff(qp) - 2 * qs.diff(q))
+                e -= P * (red._d(d, qp) - 2 * red._d(qs, q))
             eqs.append(e)
         red._cache["nielsen"] = {"2.1": dL, "2.4": eqs}
     return red._cache["nielsen"]
@@ -69,11 +69,11 @@ def nielsen_steps(red):
                    [claim22(c, "L*", "L^{*}") for c in nus], check_identity(
         "2.2", r"$\partial(dL^*/dq_\varepsilon)/\partial q'_\nu = d/dq_\varepsilon(\partial L^*/"
         r"\partial q'_\nu) + \partial L^*/\partial q_\nu$",
-        [dL.diff(qp[c]) for c in nus],
-        [red._D(Ls.diff(qp[c])) + Ls.diff(q[c]) for c in nus], smp)))
+        [red._d(dL, qp[c]) for c in nus],
+        [red._D(red._d(Ls, qp[c])) + red._d(Ls, q[c]) for c in nus], smp)))
     if S.dependent_coordinates:
-        lhs = [red._D(qs).diff(qp[c]) for qs in red._qdstar for c in nus]
-        rhs = [red._D(qs.diff(qp[c])) + qs.diff(q[c]) for qs in red._qdstar for c in nus]
+        lhs = [red._d(red._D(qs), qp[c]) for qs in red._qdstar for c in nus]
+        rhs = [red._D(red._d(qs, qp[c])) + red._d(qs, q[c]) for qs in red._qdstar for c in nus]
         shown = [claim22(c, sp.pretty(S.qd[d]) + "*", sp.latex(S.qd[d]) + "^{*}")
                  for d in S.dependent_coordinates for c in nus]
         st.append(Step("2.3", r"the same for $\dot q^*$", shown, check_identity(

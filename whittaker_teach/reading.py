@@ -65,9 +65,9 @@ def powers_combined(expr):
     """In every product, powers of the same base (equal after ``expand``) are merged:
     sqrt(A)*A -> A**(3/2).  Exact: x**a * x**b = x**(a + b) for every base with the
     principal branch.  Only bases of at most ``BASE_EXPAND_LIMIT`` nodes, whose
-    expansion is estimated at most ``BASE_EXPAND_LIMIT`` terms, are expanded to
-    compare them (others are compared as written): a small base holding
-    (1 + x/3 + theta/5)**40 is not expanded, and the cost stays bounded.
+    expansion is estimated at most as many terms, are expanded to compare them
+    (others are compared as written, such as 2h - (1 + x/3 + theta/5)**40): the cost
+    stays bounded on a large system.
 
     >>> a, b = sp.symbols("a b")
     >>> A = a**2 + b
@@ -93,10 +93,19 @@ def powers_combined(expr):
     return expr.replace(lambda e: isinstance(e, sp.Mul), merge)
 
 
+#: a piece larger than this (tree nodes) is shown as built: no reading form of it would
+#: be readable, and tidying it costs more than deriving it
+TIDY_SIZE_LIMIT = 1500
+
+
 def tidy(expr, symbols=()):
     """The readable form of one piece, without expanding it: every polynomial factor
     (a sum free of roots) collected on ``symbols`` with factored coefficients
-    (``rewrite.collected``), sin^2 + cos^2 = 1, powers of the same base merged."""
+    (``rewrite.collected``), sin^2 + cos^2 = 1, powers of the same base merged.
+    A piece of more than ``TIDY_SIZE_LIMIT`` nodes is returned as it is."""
+    expr = sp.sympify(expr)
+    if tree_size(expr, TIDY_SIZE_LIMIT) > TIDY_SIZE_LIMIT:
+        return expr
     def factor_of(f):
         if isinstance(f, sp.Pow) and isinstance(f.base, sp.Add) and f.exp.is_Integer:
             return sp.Pow(factor_of(f.base), f.exp)
@@ -110,6 +119,16 @@ def tidy(expr, symbols=()):
     if isinstance(expr, sp.Add) and all(p.exp.is_Integer for p in expr.atoms(sp.Pow)):
         return powers_combined(factor_of(expr))             # a polynomial: collect it whole
     return powers_combined(pythagoras(sp.Add(*[term(t) for t in sp.Add.make_args(expr)])))
+
+
+def _tidy(red, expr, symbols):
+    """``tidy(expr, symbols)``, once per piece and reduction: the readings of (1.26), (2.1)
+    and (2.4) share many pieces (the same derivative of L* tidied in each)."""
+    memo = red._cache.setdefault("tidy", {})
+    key = (expr, tuple(symbols))
+    if key not in memo:
+        memo[key] = tidy(expr, symbols)
+    return memo[key]
 
 
 def evaluate(expr, red):
@@ -145,7 +164,7 @@ def velocity_form(red):
     """(1.12): qdot_eps = s sqrt(2 (h + A0) / (2 A2)), numerator and denominator tidied."""
     A2, _, A0 = red._A
     num = _factored(2 * (red.h + A0))
-    den = tidy(sp.expand(2 * A2), _primes(red))
+    den = _tidy(red, sp.expand(2 * A2), _primes(red))
     return red.direction * sp.sqrt(num) / sp.sqrt(den)
 
 
@@ -154,12 +173,12 @@ def lstar_form(red):
     A2, A1, A0 = red._A
     qp = _primes(red)
     return (red.direction * sp.sqrt(_factored(2 * (red.h + A0)))
-            * sp.sqrt(tidy(sp.expand(2 * A2), qp)) + tidy(A1, qp))
+            * sp.sqrt(_tidy(red, sp.expand(2 * A2), qp)) + _tidy(red, A1, qp))
 
 
 def momentum_forms(red):
     """(dL/dqdot_dep)* of (1.26), one per dependent coordinate, tidied."""
-    return [tidy(P, _primes(red)) for P in red._Pstar]
+    return [_tidy(red, P, _primes(red)) for P in red._Pstar]
 
 
 def _pieces(red, c):
@@ -176,14 +195,14 @@ def whittaker_forms(red):
     out = []
     for c in red._nus:
         S, Ls, qp, q, x, pr = _pieces(red, c)
-        e = TotalD(tidy(Ls.diff(qp), pr), x) - tidy(Ls.diff(q), pr)
+        e = TotalD(_tidy(red, red._d(Ls, qp), pr), x) - _tidy(red, red._d(Ls, q), pr)
         for P, qs in zip(red._Pstar, red._qdstar):
             # - P (d/dx(dq*/dq') - dq*/dq), written term by term so that equal terms of
             # opposite sign cancel as built (the sledge's m tan(theta)(1 + tan^2 theta))
-            inner, P = qs.diff(qp), tidy(P, pr)
-            e += P * tidy(qs.diff(q), pr)
+            inner, P = red._d(qs, qp), _tidy(red, P, pr)
+            e += P * _tidy(red, red._d(qs, q), pr)
             if inner != 0:
-                e -= P * TotalD(tidy(inner, pr), x)
+                e -= P * TotalD(_tidy(red, inner, pr), x)
         out.append(e)
     return out
 
@@ -211,10 +230,10 @@ def total_derivative_form(red):
     the partial derivatives tidied."""
     S, Ls, pr = red.system, red._Lstar, _primes(red)
     x = S.q[red._eps]
-    terms = [tidy(Ls.diff(x), pr)]
+    terms = [_tidy(red, red._d(Ls, x), pr)]
     for c in red._nus:
-        terms += [tidy(Ls.diff(red._qp[c]), pr) * red._qpp[c],
-                  tidy(Ls.diff(S.q[c]), pr) * red._qp[c]]
+        terms += [_tidy(red, red._d(Ls, red._qp[c]), pr) * red._qpp[c],
+                  _tidy(red, red._d(Ls, S.q[c]), pr) * red._qp[c]]
     return sp.Add(*terms)
 
 
@@ -227,9 +246,9 @@ def nielsen_forms(red):
     out = []
     for c in red._nus:
         S, Ls, qp, q, x, pr = _pieces(red, c)
-        e = tidy(dL.diff(qp), pr + [red._qpp[c]]) - 2 * tidy(Ls.diff(q), pr)
+        e = _tidy(red, red._d(dL, qp), pr + [red._qpp[c]]) - 2 * _tidy(red, red._d(Ls, q), pr)
         for P, qs in zip(red._Pstar, red._qdstar):
-            P = tidy(P, pr)
-            e += 2 * P * tidy(qs.diff(q), pr) - P * tidy(red._D(qs).diff(qp), pr)
+            P = _tidy(red, P, pr)
+            e += 2 * P * _tidy(red, red._d(qs, q), pr) - P * _tidy(red, red._d(red._D(qs), qp), pr)
         out.append(e)
     return out

@@ -35,7 +35,7 @@ from __future__ import annotations
 import sympy as sp
 
 from .coordinates import name as _name, sign_assumptions as _assume
-from .dag import substitute, tree_size
+from .dag import diff, substitute, tree_size
 from .errors import ModelError, ModelTypeError, guarded
 from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
                       velocity_form, whittaker_forms)
@@ -64,12 +64,12 @@ _NOT_QUADRATIC = ("the energy equation (1.13) cannot be solved for qdot_eps in c
                   "Omega (1.6) is not quadratic in qdot_eps (is L quadratic in the velocities?)")
 
 
-def _velocity_coefficients(Omega, v):
+def _velocity_coefficients(Omega, v, memo=None):
     """A2, A1, A0 with Omega = A2 v**2 + A1 v + A0, by differentiating in v and putting
     v = 0 (collecting the powers of the velocity without expanding the rest of Omega)."""
-    d1 = Omega.diff(v)
-    d2 = d1.diff(v)
-    d3 = d2.diff(v)
+    d1 = diff(Omega, v, memo)
+    d2 = diff(d1, v, memo)
+    d3 = diff(d2, v, memo)
     if d3 != 0 and (tree_size(d3, 2000) > 2000 or sp.expand(d3) != 0):
         raise ModelError(_NOT_QUADRATIC)
     at0 = {}
@@ -174,15 +174,21 @@ class Reduction:
     def _D(self, f):
         """d/dq_eps of f(q', q) along a path (q'' taken as independent, as in 2.1)."""
         S = self.system
-        out = f.diff(S.q[self._eps])
+        d = self._d
+        out = d(f, S.q[self._eps])
         for c in self._nus:
-            out += f.diff(self._qp[c]) * self._qpp[c] + f.diff(S.q[c]) * self._qp[c]
+            out += d(f, self._qp[c]) * self._qpp[c] + d(f, S.q[c]) * self._qp[c]
         return out
+
+    def _d(self, f, z):
+        """df/dz, as ``f.diff(z)`` builds it, each shared subexpression differentiated once
+        (``dag.diff``, with one memo per system)."""
+        return diff(f, z, self.system._dmemo)
 
     def _derive(self):
         S, v, h = self.system, self._v, self.h
         self._Omega = self._sub15(S._Ltilde)                                    # (1.6)
-        A2, A1, A0 = _velocity_coefficients(self._Omega, v)
+        A2, A1, A0 = _velocity_coefficients(self._Omega, v, self.system._dmemo)
         twoA2, twoK = _tidy_coefficient(2 * A2), _tidy_coefficient(2 * (h + A0))
         if twoA2 == 0:
             raise ModelError("the energy equation (1.13) cannot be solved for qdot_eps: Omega "
@@ -194,24 +200,24 @@ class Reduction:
         self._Lstar = s * sp.sqrt(twoK) * sp.sqrt(twoA2) + A1                     # (1.16)
         self._Pstar = [self._star(self._sub15(P)) for P in S._dLdqdep_tilde()]
         self._omega = [self._sub15(phi) for phi in S._phi.values()]               # (1.22)
-        self._qdstar = [w.diff(v) for w in self._omega]                           # (1.23)
+        self._qdstar = [self._d(w, v) for w in self._omega]                           # (1.23)
         self._qdstar = [self._star(q) if q.has(v) else q for q in self._qdstar]
         self._eqs = [self._whittaker(c) for c in self._nus]                       # (1.26)
 
     def _whittaker(self, c):
         """The nu-th generalized Whittaker equation (1.26), for nu = c."""
-        S, Ls = self.system, self._Lstar
+        S, Ls, d = self.system, self._Lstar, self._d
         qp, q = self._qp[c], S.q[c]
-        e = self._D(Ls.diff(qp)) - Ls.diff(q)
+        e = self._D(d(Ls, qp)) - d(Ls, q)
         for P, qs in zip(self._Pstar, self._qdstar):
-            e -= P * (self._D(qs.diff(qp)) - qs.diff(q))
+            e -= P * (self._D(d(qs, qp)) - d(qs, q))
         return e
 
     def _accelerations(self):
         if "acc" not in self._cache:
             qpp = [self._qpp[c] for c in self._nus]
             eqs = sp.Matrix(self._eqs)
-            M = eqs.jacobian(qpp)
+            M = sp.Matrix([[self._d(e, a) for a in qpp] for e in eqs])
             rest = eqs.xreplace({a: 0 for a in qpp})
             self.system._require_regular(M, "d(1.26)/d(q''_nu)", self._sample)
             if M.is_diagonal():
@@ -324,7 +330,7 @@ class Reduction:
         S, v, h, smp = self.system, self._v, self.h, self._sample
         eps, nus, sig = self._eps, self._nus, S.independent_coordinates
         Lt, Om = S._Ltilde, self._Omega
-        Omv, vs, Ls = Om.diff(v), self._vstar, self._Lstar
+        Omv, vs, Ls = self._d(Om, v), self._vstar, self._Lstar
         qp = self._qp
         qs = {c: S.q[c] for c in S.coordinates}
         ne = _name(eps)
@@ -351,19 +357,19 @@ class Reduction:
                        check_identity(
             "1.7", r"$\partial\Omega/\partial\dot q_\varepsilon = \sum_\sigma (\partial\tilde L/"
             r"\partial\dot q_\sigma)\,\dot q_\sigma/\dot q_\varepsilon$", Omv,
-            self._sub15(sum((Lt.diff(S.qd[c]) * S.qd[c] for c in sig), sp.S.Zero)) / v, smp)))
+            self._sub15(sum((self._d(Lt, S.qd[c]) * S.qd[c] for c in sig), sp.S.Zero)) / v, smp)))
         st.append(Step("1.8", r"$\partial\Omega/\partial q'_\nu$", lambda: [eq(d("Omega", qp[c]),
-                                                          tidy(Om.diff(qp[c]))) for c in nus],
+                                                          tidy(self._d(Om, qp[c]))) for c in nus],
                        check_identity(
             "1.8", r"$\partial\Omega/\partial q'_\nu = \dot q_\varepsilon\,\partial\tilde L/"
-            r"\partial\dot q_\nu$", [Om.diff(qp[c]) for c in nus],
-            [v * self._sub15(Lt.diff(S.qd[c])) for c in nus], smp)))
+            r"\partial\dot q_\nu$", [self._d(Om, qp[c]) for c in nus],
+            [v * self._sub15(self._d(Lt, S.qd[c])) for c in nus], smp)))
         st.append(Step("1.9", r"$\partial\Omega/\partial q_\sigma$", lambda: [eq(d("Omega", qs[c]),
-                                                             tidy(Om.diff(qs[c]))) for c in sig],
+                                                             tidy(self._d(Om, qs[c]))) for c in sig],
                        check_identity(
             "1.9", r"$\partial\Omega/\partial q_\sigma = \partial\tilde L/\partial q_\sigma$",
-            [Om.diff(qs[c]) for c in sig],
-            [self._sub15(Lt.diff(qs[c])) for c in sig], smp)))
+            [self._d(Om, qs[c]) for c in sig],
+            [self._sub15(self._d(Lt, qs[c])) for c in sig], smp)))
         E13 = v * Omv - Om
         st.append(Step("1.13", "the energy integral in the new variables",
                        lambda: [eq(collected(E13, [v]), h)], check_identity(
@@ -376,7 +382,7 @@ class Reduction:
                        [eq(S.qd[eps], vform)], check_reading(
             "1.12", "the chosen root solves (1.13) and has the sign of the motion; the form "
             "shown is that root", [vs, self._star(E13), vform], [v, h, vs], self)))
-        Ovv = Omv.diff(v)
+        Ovv = self._d(Omv, v)
         for lab, vars_, what in (("1.14", [qp[c] for c in nus], r"q'_\nu"),
                                  ("1.15", [qs[c] for c in sig], r"q_\sigma")):
             st.append(Step(lab, f"(1.13) differentiated with respect to ${what}$",
@@ -387,8 +393,8 @@ class Reduction:
                                       f"{what} + " r"\dot q_\varepsilon\,\Omega_{\dot "
                                       rf"q_\varepsilon {what}}} - \partial\Omega/\partial {what}"
                                       " = 0$ at (1.12)",
-                                      [self._star(v * Ovv * vs.diff(z) + v * Omv.diff(z)
-                                                  - Om.diff(z)) for z in vars_], smp)))
+                                      [self._star(v * Ovv * self._d(vs, z) + v * self._d(Omv, z)
+                                                  - self._d(Om, z)) for z in vars_], smp)))
         lform = lstar_form(self)
         st.append(Step("1.16", r"the reduced Lagrangian $L^* = \partial\Omega/\partial\dot "
                        r"q_\varepsilon$ at (1.12)", [eq(LSTAR, lform)], check_reading(
@@ -403,27 +409,28 @@ class Reduction:
                 lab, rf"$\partial L^*/\partial {what} = \Omega_{{\dot q_\varepsilon\dot "
                 r"q_\varepsilon}\,\partial\dot q_\varepsilon/\partial " f"{what} + "
                 rf"\Omega_{{\dot q_\varepsilon {what}}}$",
-                [Ls.diff(z) for z in vars_],
-                [self._star(Ovv * vs.diff(z) + Omv.diff(z)) for z in vars_], smp)))
+                [self._d(Ls, z) for z in vars_],
+                [self._star(Ovv * self._d(vs, z) + self._d(Omv, z)) for z in vars_], smp)))
         st.append(Step("1.19", "from (1.14) and (1.17)",
-                       [eq(d("L^*", qp[c]), Ls.diff(qp[c])) for c in nus], check_identity(
+                       [eq(d("L^*", qp[c]), self._d(Ls, qp[c])) for c in nus], check_identity(
             "1.19", r"$\partial L^*/\partial q'_\nu = (1/\dot q_\varepsilon)\,\partial\Omega/"
-            r"\partial q'_\nu$", [Ls.diff(qp[c]) for c in nus],
-            [self._star(Om.diff(qp[c]) / v) for c in nus], smp)))
+            r"\partial q'_\nu$", [self._d(Ls, qp[c]) for c in nus],
+            [self._star(self._d(Om, qp[c]) / v) for c in nus], smp)))
         st.append(Step("1.20", "from (1.15) and (1.18)",
-                       [eq(d("L^*", qs[c]), Ls.diff(qs[c])) for c in sig], check_identity(
+                       [eq(d("L^*", qs[c]), self._d(Ls, qs[c])) for c in sig], check_identity(
             "1.20", r"$\partial L^*/\partial q_\sigma = (1/\dot q_\varepsilon)\,\partial\Omega/"
             r"\partial q_\sigma$ (the OCR prints $1/\dot q_\sigma$)",
-            [Ls.diff(qs[c]) for c in sig], [self._star(Om.diff(qs[c]) / v) for c in sig], smp)))
+            [self._d(Ls, qs[c]) for c in sig],
+            [self._star(self._d(Om, qs[c]) / v) for c in sig], smp)))
         st.append(Step("1.21", "with (1.8) and (1.9)", lambda: [
             eq(LS(qp[c]), partial("L̃", r"\tilde{L}", S.qd[c])) for c in nus] + [
             eq(LS(qs[c]), partial("L̃", r"\tilde{L}", qs[c]) / v) for c in sig], check_identity(
             "1.21", r"$\partial L^*/\partial q'_\nu = \partial\tilde L/\partial\dot q_\nu$ and "
             r"$\partial L^*/\partial q_\sigma = (1/\dot q_\varepsilon)\,\partial\tilde L/"
             r"\partial q_\sigma$",
-            [Ls.diff(qp[c]) for c in nus] + [Ls.diff(qs[c]) for c in sig],
-            [self._star(self._sub15(Lt.diff(S.qd[c]))) for c in nus]
-            + [self._star(self._sub15(Lt.diff(qs[c])) / v) for c in sig], smp)))
+            [self._d(Ls, qp[c]) for c in nus] + [self._d(Ls, qs[c]) for c in sig],
+            [self._star(self._sub15(self._d(Lt, S.qd[c]))) for c in nus]
+            + [self._star(self._sub15(self._d(Lt, qs[c])) / v) for c in sig], smp)))
         st += self._constraint_steps()
         st += self._equation_steps()
         return st
@@ -442,18 +449,18 @@ class Reduction:
               Step("1.23", r"$\dot q^* = \partial\omega/\partial\dot q_\varepsilon$",
                    [eq(s_, q) for s_, q in zip(star, self._qdstar)], check_zero(
                        "1.23", r"$\dot q^*$ is free of $\dot q_\varepsilon$",
-                       [q.diff(v) for q in self._qdstar],
+                       [self._d(q, v) for q in self._qdstar],
                        smp)),
               Step("1.24", "(1.10) in the new variables", lambda: [
                   eq(v * partial(sp.pretty(o), sp.latex(o), v) - o, 0) for o in om], check_zero(
                   "1.24", r"$\dot q_\varepsilon\,\partial\omega/\partial\dot q_\varepsilon - \omega"
                   " = 0$",
-                  [v * w.diff(v) - w for w in self._omega], smp))]
+                  [v * self._d(w, v) - w for w in self._omega], smp))]
         phis = list(S._phi.values())
-        lhs = [q.diff(qp[c]) for q in self._qdstar for c in nus]
-        lhs += [q.diff(qs[c]) for q in self._qdstar for c in sig]
-        rhs = [self._sub15(p.diff(S.qd[c])) for p in phis for c in nus]
-        rhs += [self._sub15(p.diff(qs[c])) / v for p in phis for c in sig]
+        lhs = [self._d(q, qp[c]) for q in self._qdstar for c in nus]
+        lhs += [self._d(q, qs[c]) for q in self._qdstar for c in sig]
+        rhs = [self._sub15(self._d(p, S.qd[c])) for p in phis for c in nus]
+        rhs += [self._sub15(self._d(p, qs[c])) / v for p in phis for c in sig]
         def shown():
             out = []
             for c_dep, s_ in zip(deps, star):

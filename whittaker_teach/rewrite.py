@@ -30,15 +30,21 @@ FACTOR_LIMIT = 200
 def _ops_above(expr, limit):
     """``count_ops(expr) > limit``, without counting a huge tree: a tree of more than
     4 * limit + 1 nodes has more than ``limit`` operations (each operation joins at
-    most four nodes), and its size is counted only that far.  Also True when
+    most four nodes), and its size is counted only that far; nor is a tree with more than
+    ``limit`` powers, functions and terms joined in sums (``count_ops`` counts at least one
+    operation for each).  Also True when
     ``expand`` would swell it beyond that (a power of a sum such as (1 + x)**40)."""
-    n, stack = 0, [expr]
+    n, least, stack = 0, 0, [expr]
     while stack and n <= 4 * limit + 1:
         e = stack.pop()
         n += 1
+        if e.is_Add:
+            least += len(e.args) - 1       # count_ops counts one ADD or SUB per joined term,
+        elif e.is_Pow or e.is_Function:
+            least += 1                     # one POW, DIV or EXP per power, one per function
         stack.extend(e.args)
-    return (n > 4 * limit + 1 or expanded_terms(expr, SWELL_LIMIT) > SWELL_LIMIT
-            or sp.count_ops(expr) > limit)
+    return (n > 4 * limit + 1 or least > limit
+            or expanded_terms(expr, SWELL_LIMIT) > SWELL_LIMIT or sp.count_ops(expr) > limit)
 
 
 def collected(expr, symbols):

@@ -45,12 +45,12 @@ import sympy as sp
 from sympy.core.function import AppliedUndef
 
 from .coordinates import T, name, sign_assumptions
-from .dag import max_depth, substitute
+from .dag import diff, max_depth, substitute
 from .errors import ModelError, ModelTypeError, guarded
 from .reduction import Reduction
 from .rewrite import collected, rational
 from .steps import Derivation, Report, Step, eq
-from .verify import DPS, check_identity, check_zero, shared_points
+from .verify import DPS, Unevaluable, check_identity, check_zero, evaluate, shared_points
 
 __all__ = ["ChaplyginSystem"]
 
@@ -166,6 +166,7 @@ class ChaplyginSystem:
             raise ModelError(f"parameter {clash[0]} has the name of a coordinate or velocity; "
                              "rename it (the derivation uses plain symbols for q and qdot)")
         self._cache = {}
+        self._dmemo = {}     # dag.diff's memo: shared subexpressions differentiated once
 
     # ----- notation -------------------------------------------------------
     def _make_symbols(self):
@@ -238,6 +239,10 @@ class ChaplyginSystem:
         return substitute(expr, self._to_public)
 
     # ----- properties -----------------------------------------------------
+    def _d(self, f, z):
+        """df/dz, as ``f.diff(z)`` builds it, each shared subexpression differentiated once."""
+        return diff(f, z, self._dmemo)
+
     @property
     def is_holonomic(self):
         """True when there are no dependent velocities (g = 0)."""
@@ -262,14 +267,14 @@ class ChaplyginSystem:
     def _dLdqdep_tilde(self):
         """(dL/d qdot_(eps+beta)) with the constraints substituted, per dependent coordinate."""
         sub = {self.qd[c]: phi for c, phi in zip(self.dependent_coordinates, self._phi.values())}
-        return [self._L.diff(self.qd[c]).xreplace(sub) for c in self.dependent_coordinates]
+        return [self._d(self._L, self.qd[c]).xreplace(sub) for c in self.dependent_coordinates]
 
     def _velocity_symbols(self):
         return [self.qdd[c] for c in self._sig] + [self.qd[c] for c in self._sig]
 
     def _dt(self, f):
         """Total time derivative of f(q_sigma, qdot_sigma) along a motion."""
-        return sum((f.diff(self.q[c]) * self.qd[c] + f.diff(self.qd[c]) * self.qdd[c]
+        return sum((self._d(f, self.q[c]) * self.qd[c] + self._d(f, self.qd[c]) * self.qdd[c]
                     for c in self._sig), sp.S.Zero)
 
     # ----- (1.4) ----------------------------------------------------------
@@ -280,9 +285,9 @@ class ChaplyginSystem:
             eqs = []
             for c in self._sig:
                 qd, q = self.qd[c], self.q[c]
-                e = self._dt(Lt.diff(qd)) - Lt.diff(q)
+                e = self._dt(self._d(Lt, qd)) - self._d(Lt, q)
                 for Pb, phi in zip(P, self._phi.values()):
-                    e -= Pb * (self._dt(phi.diff(qd)) - phi.diff(q))
+                    e -= Pb * (self._dt(self._d(phi, qd)) - self._d(phi, q))
                 eqs.append(collected(e, self._velocity_symbols()))
             self._cache["eom"] = eqs
         return self._cache["eom"]
@@ -296,7 +301,7 @@ class ChaplyginSystem:
         if "acc" not in self._cache:
             qdd = [self.qdd[c] for c in self._sig]
             eqs = sp.Matrix(self._eom())
-            M = eqs.jacobian(qdd)
+            M = sp.Matrix([[self._d(e, a) for a in qdd] for e in eqs])
             rest = eqs.xreplace({a: 0 for a in qdd})
             self._require_regular(M, "the mass matrix d(1.4)/d(qddot_sigma)", self._sample_time)
             if M.is_diagonal():
@@ -321,16 +326,20 @@ class ChaplyginSystem:
                 for k, v in self._tidy_accelerations().items()}
 
     def _require_regular(self, M, what, sample):
-        fn = sp.lambdify(sorted(M.free_symbols, key=str), M, modules="mpmath", docstring_limit=0)
-        syms = sorted(M.free_symbols, key=str)
         rng = random.Random(7)
+        rows = M.tolist()
         with mpmath.workdps(DPS):
             for _ in range(3):
-                pt = sample(rng)
+                memo = {s: mpmath.mpf(v) if isinstance(v, (int, float)) else v
+                        for s, v in sample(rng).items()}
                 try:
-                    d = mpmath.det(mpmath.matrix(fn(*[pt[s] for s in syms])))
-                except (ZeroDivisionError, ValueError):
+                    d = mpmath.det(mpmath.matrix([[evaluate(e, memo) for e in row]
+                                                  for row in rows]))
+                except (ZeroDivisionError, ValueError, OverflowError, TypeError):
                     continue
+                except (Unevaluable, KeyError) as err:
+                    raise ModelError(f"{what} cannot be evaluated numerically to check that "
+                                     f"it is regular (1.4): {err}") from err
                 if abs(d) > mpmath.mpf(10) ** (-DPS // 2):
                     return
         raise ModelError(f"singular kinetic energy: {what} is singular, so the accelerations "
@@ -339,7 +348,7 @@ class ChaplyginSystem:
 
     # ----- (1.10), (1.11) -------------------------------------------------
     def _euler_residuals(self):
-        return [sum((phi.diff(self.qd[c]) * self.qd[c] for c in self._sig), sp.S.Zero) - phi
+        return [sum((self._d(phi, self.qd[c]) * self.qd[c] for c in self._sig), sp.S.Zero) - phi
                 for phi in self._phi.values()]
 
     @guarded("checking (1.10)")
@@ -365,7 +374,7 @@ class ChaplyginSystem:
     def _energy(self):
         if "E" not in self._cache:
             Lt = self._Ltilde
-            E = sum((self.qd[c] * Lt.diff(self.qd[c]) for c in self._sig), sp.S.Zero) - Lt
+            E = sum((self.qd[c] * self._d(Lt, self.qd[c]) for c in self._sig), sp.S.Zero) - Lt
             self._cache["E"] = collected(E, self._velocity_symbols())
         return self._cache["E"]
 
@@ -412,8 +421,8 @@ class ChaplyginSystem:
                           [eq(sp.Symbol("Ltilde"), self._Ltilde)], dep_q and check_zero(
             "1.2", r"the terms of (1.2) in $\partial\varphi/\partial q_{\varepsilon+\beta}$ and "
             r"$\partial\tilde L/\partial q_{\varepsilon+\beta}$ vanish (Chaplygin type)",
-            [phi.diff(s) for phi in self._phi.values() for s in dep_q]
-            + [self._Ltilde.diff(s) for s in dep_q], self._sample_time) or None))
+            [self._d(phi, s) for phi in self._phi.values() for s in dep_q]
+            + [self._d(self._Ltilde, s) for s in dep_q], self._sample_time) or None))
         if not self.is_holonomic:
             free = ", ".join(f"${sp.latex(self.q[c])}$" for c in self.independent_coordinates)
             steps.append(Step("1.3", f"Chaplygin type: each constraint depends on {free} and "

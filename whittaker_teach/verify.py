@@ -106,6 +106,21 @@ def _exactly_zero(diff):
     return None
 
 
+def _exact_ways(lhs, rhs):
+    """The rewrite that shows each ``lhs[i] == rhs[i]``, or None as soon as one pair is
+    not shown exactly (the smallest differences are tried first: a failure among them
+    spares the costly attempts)."""
+    diffs = sorted((a - b for a, b in zip(lhs, rhs)),
+                   key=lambda d: tree_size(d, EXACT_SIZE_LIMIT))
+    ways = []
+    for d in diffs:
+        way = _exactly_zero(d)
+        if not way:
+            return None
+        ways.append(way)
+    return ways
+
+
 class Unevaluable(Exception):
     """An expression the numeric checks cannot evaluate (an unknown function)."""
 
@@ -298,8 +313,8 @@ def check_identity(label, claim, lhs, rhs, sample, *, exact=True, points=POINTS,
         return Check(label, claim, False, "exact", f"{len(lhs)} left sides, {len(rhs)} right sides",
                      **what)
     if exact:
-        ways = [_exactly_zero(a - b) for a, b in zip(lhs, rhs)]
-        if all(ways):
+        ways = _exact_ways(lhs, rhs)
+        if ways:
             return Check(label, claim, True, "exact", ", ".join(sorted(set(ways))), **what)
     try:
         worst, used = _numeric(lhs, rhs, sample, points, seed)
