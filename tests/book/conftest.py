@@ -19,7 +19,8 @@ def pytest_terminal_summary(terminalreporter):
     if not paths:
         return
     parts = [json.loads(p.read_text(encoding="utf-8")) for p in paths]
-    s = {"pages": sum(p["pages"] for p in parts),
+    loads = [key for p in parts for key in p["per_page"]]          # "page@width"
+    s = {"pages": len({key.rsplit("@", 1)[0] for key in loads}),
          "widths": sorted({w for p in parts for w in p["widths"]}),
          **{k: sum(p[k] for p in parts) for k in ("page_loads", "displays", "inline", "text_outputs")}}
     terminalreporter.write_line(

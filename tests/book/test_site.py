@@ -169,12 +169,6 @@ def browser():
         pw.stop()
 
 
-try:
-    from playwright.sync_api import TimeoutError as PlaywrightTimeout
-except ImportError:  # reported by the browser fixture
-    PlaywrightTimeout = TimeoutError
-
-
 class PageVisit:
     """What one page load in a window ``width`` px wide did: requests,
     failures, JS and console errors, DOM facts, the layout checks."""
@@ -186,6 +180,7 @@ class PageVisit:
         self.failed: list[str] = []
         self.js_errors: list[str] = []
         self.console_errors: list[str] = []
+        self.in_flight = 0
         w, h = VIEWPORTS[width]
         context = browser.new_context(service_workers="block", viewport={"width": w, "height": h})
         try:
@@ -195,6 +190,8 @@ class PageVisit:
             page.on("console", self._on_console)
             page.on("requestfailed", self._on_failed)
             page.on("response", self._on_response)
+            page.on("request", self._on_request_start)
+            page.on("requestfinished", self._on_request_end)
             redirect = _redirect_target(rel)
             self.final_rel = rel
             t0 = time.monotonic()
@@ -247,14 +244,11 @@ class PageVisit:
             if redirect:  # links of the final page are relative to it
                 self.url = page.url
                 self.hrefs.append(target)
-            # let late requests (fonts, lazy assets) show up, and the site's
+            # let late requests (fonts, lazy assets) finish, and the site's
             # own post-typesetting adjustments settle
-            # (a request still open then is not an error by itself: one that
-            # fails is recorded by _on_failed)
-            try:
-                page.wait_for_load_state("networkidle", timeout=IDLE_TIMEOUT_MS)
-            except PlaywrightTimeout:
-                pass
+            # (a request still open after IDLE_TIMEOUT_MS is not an error by
+            # itself: one that fails is recorded by _on_failed)
+            self._wait_quiet(page)
             page.evaluate(_SETTLE_JS)
             # the page as a reader first sees it (solutions folded)
             self.screenshot = SCREENSHOTS / f"{self.final_rel.removesuffix('.html').replace('/', '--')}-{width}.png"
@@ -268,6 +262,26 @@ class PageVisit:
             self.timings["layout"] = time.monotonic() - t0
         finally:
             context.close()
+
+    def _on_request_start(self, request):
+        self.in_flight += 1
+
+    def _on_request_end(self, request):
+        self.in_flight -= 1
+
+    def _wait_quiet(self, page, quiet_ms: int = 100):
+        """Until no request has been open for ``quiet_ms`` (Playwright's "networkidle"
+        waits 500 ms after the last one, on every page load)."""
+        deadline = time.monotonic() + IDLE_TIMEOUT_MS / 1000
+        quiet_since = None
+        while time.monotonic() < deadline:
+            if self.in_flight > 0:
+                quiet_since = None
+            elif quiet_since is None:
+                quiet_since = time.monotonic()
+            elif time.monotonic() - quiet_since >= quiet_ms / 1000:
+                return
+            page.wait_for_timeout(25)
 
     def _on_console(self, msg):
         if msg.type == "error":
@@ -283,6 +297,7 @@ class PageVisit:
             route.abort("blockedbyclient")
 
     def _on_failed(self, request):
+        self.in_flight -= 1
         if urlsplit(request.url).hostname in LOCAL_HOSTS:
             self.failed.append(f"{request.url} ({request.failure})")
 
