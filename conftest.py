@@ -10,6 +10,10 @@ Here a stored and a fresh SVG are equal when they have the same tokens, in
 the same order, with numbers within ``SVG_TOLERANCE_PT`` of each other and
 hash-named ids (``p0123456789``) renamed in order of first appearance. Every
 other output (text, LaTeX, HTML) is still compared exactly.
+
+Also: a test's figures meant for the log (a benchmark table, recorded with
+``record_property("printed", text)``) are printed at the end of the run, by the
+main process: under pytest-xdist a worker's own prints never reach the terminal.
 """
 from __future__ import annotations
 
@@ -74,3 +78,12 @@ def pytest_configure(config):
 
     IPyNbCell.sanitize = sanitize_with_svg_tolerance
     IPyNbCell._wt_svg_tolerance = True
+
+
+def pytest_terminal_summary(terminalreporter):
+    """Print what the tests recorded as ``("printed", text)`` (see the module docstring)."""
+    for key in ("passed", "failed"):
+        for report in terminalreporter.stats.get(key, []):
+            for name, value in getattr(report, "user_properties", ()):
+                if name == "printed" and report.when == "call":
+                    terminalreporter.write_line(str(value))
