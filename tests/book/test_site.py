@@ -65,6 +65,11 @@ CHROMIUM_ARGS = [
     "--disable-background-networking",
     "--disable-component-update",
     "--disable-sync",
+    # nothing but 127.0.0.1 is reached: a dead proxy for every other host, and no
+    # name resolution (the requests are still seen, and recorded, by the test)
+    "--proxy-server=http://127.0.0.1:9",
+    "--proxy-bypass-list=127.0.0.1",
+    "--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE 127.0.0.1",
 ]
 LOCAL_HOSTS = {"127.0.0.1"}
 # schemes that never reach the network
@@ -113,13 +118,19 @@ _REFRESH_RE = re.compile(
 
 def _redirect_target(rel: str) -> str | None:
     """The URL of a ``<meta http-equiv="refresh">`` redirect page, if any."""
-    m = _REFRESH_RE.search((SITE / rel).read_text(encoding="utf-8"))
+    path = SITE / rel
+    if not path.is_file():     # a page of another site (test_the_checks_see_...)
+        return None
+    m = _REFRESH_RE.search(path.read_text(encoding="utf-8"))
     return m.group(1).strip() if m else None
 
 
 def _has_math(rel: str) -> bool:
     """Does the page's HTML (outside <script>) contain maths for MathJax?"""
-    html = _SCRIPT_RE.sub("", (SITE / rel).read_text(encoding="utf-8"))
+    path = SITE / rel
+    if not path.is_file():
+        return False
+    html = _SCRIPT_RE.sub("", path.read_text(encoding="utf-8"))
     return bool(_MATH_RE.search(html))
 
 
@@ -169,105 +180,143 @@ def browser():
         pw.stop()
 
 
+class Window:
+    """One browser window ``width`` px wide, kept open for the pages a worker visits:
+    each page is opened by navigating this window to it, as a reader clicking
+    through the site would (a fresh window per page costs about twice the CPU).
+    Its events go to the visit in progress."""
+
+    def __init__(self, browser, width: int):
+        w, h = VIEWPORTS[width]
+        self.context = browser.new_context(service_workers="block", viewport={"width": w, "height": h})
+        self.page = self.context.new_page()
+        self.visit: PageVisit | None = None
+        for event in ("pageerror", "console", "request", "requestfinished", "requestfailed",
+                      "response"):
+            self.page.on(event, functools.partial(self._dispatch, event))
+
+    def _dispatch(self, event, arg):
+        if self.visit is not None:
+            self.visit.on_event(event, arg)
+
+    def close(self):
+        self.context.close()
+
+
 class PageVisit:
     """What one page load in a window ``width`` px wide did: requests,
-    failures, JS and console errors, DOM facts, the layout checks."""
+    failures, JS and console errors, DOM facts, the layout checks.
 
-    def __init__(self, browser, base_url: str, rel: str, width: int = 1280):
+    Requests to any host but 127.0.0.1 never leave the machine (the browser runs
+    with a dead proxy and no name resolution for them); each one is recorded."""
+
+    def __init__(self, window: Window, base_url: str, rel: str):
         self.url = urljoin(base_url, rel)
-        self.width = width
+        self.width = window.page.viewport_size["width"]
         self.external: list[str] = []
         self.failed: list[str] = []
         self.js_errors: list[str] = []
         self.console_errors: list[str] = []
-        self.in_flight = 0
-        w, h = VIEWPORTS[width]
-        context = browser.new_context(service_workers="block", viewport={"width": w, "height": h})
+        self.open_requests: set = set()
+        page = window.page
+        window.visit = self
         try:
-            context.route("**/*", self._route)
-            page = context.new_page()
-            page.on("pageerror", lambda exc: self.js_errors.append(str(exc)))
-            page.on("console", self._on_console)
-            page.on("requestfailed", self._on_failed)
-            page.on("response", self._on_response)
-            page.on("request", self._on_request_start)
-            page.on("requestfinished", self._on_request_end)
-            redirect = _redirect_target(rel)
-            self.final_rel = rel
-            t0 = time.monotonic()
-            if redirect:  # e.g. Jupyter Book's root index.html -> book/index.html
-                target = urljoin(self.url, redirect)
-                self.final_rel = urlsplit(target).path.lstrip("/")
-                page.goto(self.url, wait_until="commit", timeout=PAGE_TIMEOUT_MS)
-                page.wait_for_url(target, wait_until="load", timeout=PAGE_TIMEOUT_MS)
-            else:
-                page.goto(self.url, wait_until="load", timeout=PAGE_TIMEOUT_MS)
-            self.timings = {"load": time.monotonic() - t0}
-            self.mathjax_loaded = page.evaluate(
-                """async () => {
-                    const mj = window.MathJax;
-                    if (mj && mj.startup && mj.startup.promise) {
-                        await mj.startup.promise;
-                        return true;
-                    }
-                    return false;
-                }"""
-            )
-            self.bad_images = page.evaluate(
-                """async () => {
-                    const imgs = Array.from(document.images);
-                    await Promise.all(imgs.map(img => {
-                        img.loading = 'eager';
-                        if (img.complete) return null;
-                        return new Promise(done => {
-                            img.addEventListener('load', done);
-                            img.addEventListener('error', done);
-                            setTimeout(done, 10000);
-                        });
-                    }));
-                    return imgs.filter(img => !img.complete || img.naturalWidth === 0)
-                               .map(img => img.currentSrc || img.src || img.outerHTML);
-                }"""
-            )
-            self.mjx_containers = page.locator("mjx-container").count()
-            self.mjx_errors = page.eval_on_selector_all(
-                "mjx-merror", "els => els.map(e => e.getAttribute('data-mjx-error') || e.textContent)"
-            )
-            self.untypeset_math = page.eval_on_selector_all(
-                ".math",
-                "els => els.filter(e => !e.querySelector('mjx-container'))"
-                "          .map(e => e.textContent.trim().slice(0, 80))",
-            )
-            self.hrefs = page.eval_on_selector_all(
-                "a[href]", "els => els.map(e => e.getAttribute('href'))"
-            )
-            if redirect:  # links of the final page are relative to it
-                self.url = page.url
-                self.hrefs.append(target)
-            # let late requests (fonts, lazy assets) finish, and the site's
-            # own post-typesetting adjustments settle
-            # (a request still open after IDLE_TIMEOUT_MS is not an error by
-            # itself: one that fails is recorded by _on_failed)
-            self._wait_quiet(page)
-            page.evaluate(_SETTLE_JS)
-            # the page as a reader first sees it (solutions folded)
-            self.screenshot = SCREENSHOTS / f"{self.final_rel.removesuffix('.html').replace('/', '--')}-{width}.png"
-            self.screenshot.parent.mkdir(parents=True, exist_ok=True)
-            self.timings["settled"] = time.monotonic() - t0
-            page.screenshot(path=str(self.screenshot), full_page=FULL_SCREENSHOTS)
-            self.timings["screenshot"] = time.monotonic() - t0
-            # then with every fold open: what is inside must fit as well
-            page.evaluate(_UNFOLD_JS)
-            self.layout = page.evaluate(LAYOUT_JS)
-            self.timings["layout"] = time.monotonic() - t0
+            self._load(page, rel)
         finally:
-            context.close()
+            window.visit = None
 
-    def _on_request_start(self, request):
-        self.in_flight += 1
+    def _load(self, page, rel: str):
+        redirect = _redirect_target(rel)
+        self.final_rel = rel
+        t0 = time.monotonic()
+        if redirect:  # e.g. Jupyter Book's root index.html -> book/index.html
+            target = urljoin(self.url, redirect)
+            self.final_rel = urlsplit(target).path.lstrip("/")
+            page.goto(self.url, wait_until="commit", timeout=PAGE_TIMEOUT_MS)
+            page.wait_for_url(target, wait_until="load", timeout=PAGE_TIMEOUT_MS)
+        else:
+            page.goto(self.url, wait_until="load", timeout=PAGE_TIMEOUT_MS)
+        self.timings = {"load": time.monotonic() - t0}
+        self.mathjax_loaded = page.evaluate(
+            """async () => {
+                const mj = window.MathJax;
+                if (mj && mj.startup && mj.startup.promise) {
+                    await mj.startup.promise;
+                    return true;
+                }
+                return false;
+            }"""
+        )
+        self.bad_images = page.evaluate(
+            """async () => {
+                const imgs = Array.from(document.images);
+                await Promise.all(imgs.map(img => {
+                    img.loading = 'eager';
+                    if (img.complete) return null;
+                    return new Promise(done => {
+                        img.addEventListener('load', done);
+                        img.addEventListener('error', done);
+                        setTimeout(done, 10000);
+                    });
+                }));
+                return imgs.filter(img => !img.complete || img.naturalWidth === 0)
+                           .map(img => img.currentSrc || img.src || img.outerHTML);
+            }"""
+        )
+        self.mjx_containers = page.locator("mjx-container").count()
+        self.mjx_errors = page.eval_on_selector_all(
+            "mjx-merror", "els => els.map(e => e.getAttribute('data-mjx-error') || e.textContent)"
+        )
+        self.untypeset_math = page.eval_on_selector_all(
+            ".math",
+            "els => els.filter(e => !e.querySelector('mjx-container'))"
+            "          .map(e => e.textContent.trim().slice(0, 80))",
+        )
+        self.hrefs = page.eval_on_selector_all(
+            "a[href]", "els => els.map(e => e.getAttribute('href'))"
+        )
+        if redirect:  # links of the final page are relative to it
+            self.url = page.url
+            self.hrefs.append(target)
+        # let late requests (fonts, lazy assets) finish, and the site's
+        # own post-typesetting adjustments settle
+        # (a request still open after IDLE_TIMEOUT_MS is not an error by
+        # itself: one that fails is recorded by on_event)
+        self._wait_quiet(page)
+        page.evaluate(_SETTLE_JS)
+        # the page as a reader first sees it (solutions folded)
+        self.screenshot = SCREENSHOTS / f"{self.final_rel.removesuffix('.html').replace('/', '--')}-{self.width}.png"
+        self.screenshot.parent.mkdir(parents=True, exist_ok=True)
+        self.timings["settled"] = time.monotonic() - t0
+        page.screenshot(path=str(self.screenshot), full_page=FULL_SCREENSHOTS)
+        self.timings["screenshot"] = time.monotonic() - t0
+        # then with every fold open: what is inside must fit as well
+        page.evaluate(_UNFOLD_JS)
+        self.layout = page.evaluate(LAYOUT_JS)
+        self.timings["layout"] = time.monotonic() - t0
 
-    def _on_request_end(self, request):
-        self.in_flight -= 1
+    def on_event(self, event, arg):
+        """A page event during this visit (see Window)."""
+        if event == "pageerror":
+            self.js_errors.append(str(arg))
+        elif event == "console":
+            if arg.type == "error":
+                self.console_errors.append(arg.text)
+        elif event == "request":
+            self.open_requests.add(arg)
+            parts = urlsplit(arg.url)
+            if parts.scheme not in INERT_SCHEMES and parts.hostname not in LOCAL_HOSTS:
+                self.external.append(arg.url)
+        elif event == "requestfinished":
+            self.open_requests.discard(arg)
+        elif event == "requestfailed":
+            mine = arg in self.open_requests        # not one the previous page left open
+            self.open_requests.discard(arg)
+            if mine and urlsplit(arg.url).hostname in LOCAL_HOSTS:
+                self.failed.append(f"{arg.url} ({arg.failure})")
+        elif event == "response":
+            if urlsplit(arg.url).hostname in LOCAL_HOSTS and arg.status >= 400:
+                self.failed.append(f"{arg.url} (HTTP {arg.status})")
 
     def _wait_quiet(self, page, quiet_ms: int = 100):
         """Until no request has been open for ``quiet_ms`` (Playwright's "networkidle"
@@ -275,35 +324,13 @@ class PageVisit:
         deadline = time.monotonic() + IDLE_TIMEOUT_MS / 1000
         quiet_since = None
         while time.monotonic() < deadline:
-            if self.in_flight > 0:
+            if self.open_requests:
                 quiet_since = None
             elif quiet_since is None:
                 quiet_since = time.monotonic()
             elif time.monotonic() - quiet_since >= quiet_ms / 1000:
                 return
             page.wait_for_timeout(25)
-
-    def _on_console(self, msg):
-        if msg.type == "error":
-            self.console_errors.append(msg.text)
-
-    def _route(self, route):
-        url = route.request.url
-        parts = urlsplit(url)
-        if parts.scheme in INERT_SCHEMES or parts.hostname in LOCAL_HOSTS:
-            route.continue_()
-        else:
-            self.external.append(url)
-            route.abort("blockedbyclient")
-
-    def _on_failed(self, request):
-        self.in_flight -= 1
-        if urlsplit(request.url).hostname in LOCAL_HOSTS:
-            self.failed.append(f"{request.url} ({request.failure})")
-
-    def _on_response(self, response):
-        if urlsplit(response.url).hostname in LOCAL_HOSTS and response.status >= 400:
-            self.failed.append(f"{response.url} (HTTP {response.status})")
 
 
 _SETTLE_JS = """async () => {
@@ -324,12 +351,18 @@ _visits: dict[tuple[str, int], PageVisit] = {}
 
 @pytest.fixture(scope="module")
 def visit(browser, base_url):
+    windows: dict[int, Window] = {}
+
     def _visit(rel: str, width: int = 1280) -> PageVisit:
         if (rel, width) not in _visits:
-            _visits[rel, width] = PageVisit(browser, base_url, rel, width)
+            if width not in windows:
+                windows[width] = Window(browser, width)
+            _visits[rel, width] = PageVisit(windows[width], base_url, rel)
         return _visits[rel, width]
 
     yield _visit
+    for window in windows.values():
+        window.close()
     _write_summary()
 
 
@@ -386,6 +419,35 @@ def test_no_cdn_mentioned():
         for rel in PAGES
     }
     assert not {k: v for k, v in hits.items() if v}
+
+
+def test_the_checks_see_a_remote_request_a_missing_file_and_a_script_error(browser, tmp_path):
+    """The checks themselves, on a small page of another site: what they must catch
+    is caught, even in a window that has shown another page before."""
+    icon = '<link rel="icon" href="data:,">'      # no request for /favicon.ico
+    (tmp_path / "ok.html").write_text(icon + "<p>fine</p>", encoding="utf-8")
+    (tmp_path / "bad.html").write_text(
+        icon + '<script src="https://cdn.jsdelivr.net/npm/x.js"></script>'
+        '<img src="missing.png"><script>undefinedFunction()</script>'
+        '<script>console.error("boom")</script><p>text</p>', encoding="utf-8")
+    handler = functools.partial(_QuietHandler, directory=str(tmp_path))
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    window = Window(browser, 390)
+    try:
+        base = f"http://127.0.0.1:{server.server_address[1]}/"
+        ok = PageVisit(window, base, "ok.html")
+        bad = PageVisit(window, base, "bad.html")
+    finally:
+        window.close()
+        server.shutdown()
+        server.server_close()
+    assert _load_problems(ok) == [] and ok.width == 390
+    assert bad.external == ["https://cdn.jsdelivr.net/npm/x.js"]
+    assert any("missing.png" in f for f in bad.failed), bad.failed
+    assert any("undefinedFunction" in e for e in bad.js_errors), bad.js_errors
+    assert "boom" in bad.console_errors
+    assert bad.screenshot.is_file()
 
 
 def _load_problems(v: PageVisit) -> list[str]:
