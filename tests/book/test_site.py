@@ -7,10 +7,13 @@ runs only this)::
 
 The site is served from 127.0.0.1 on a free port and every page is opened in
 headless Debian Chromium (``/usr/bin/chromium``, or ``$CHROMIUM``) through
-Playwright's sync API; ``playwright install`` is never needed. Checks:
+Playwright's sync API; ``playwright install`` is never needed. Each pytest-xdist
+worker keeps one window per width and navigates it from page to page, as a
+reader clicking through the site would. Checks:
 
-* no request leaves 127.0.0.1 (the site works offline; such requests are
-  recorded and aborted), and no local request fails or returns >= 400;
+* no request leaves 127.0.0.1 (the site works offline; the browser itself blocks
+  other hosts, and each such request is recorded), and no local request fails or
+  returns >= 400;
 * a page whose HTML has maths is typeset by MathJax: ``mjx-container``
   elements, every ``.math`` element holds one, and no ``mjx-merror``;
 * every ``<img>`` loaded; no uncaught JavaScript error;
