@@ -7,7 +7,8 @@ solved) and to verify (every step's check), against
 sympy.physics.mechanics' LagrangesMethod forming and solving the same
 system's equations (the constraints as non-holonomic constraints), and the
 peak memory (tracemalloc) of each side.  Each figure comes from a fresh
-process; memory from a separate traced process (tracing slows the run).
+process forked after the imports (a new interpreter each where there is no
+``os.fork``); memory from a separate traced process (tracing slows the run).
 
 ``python -m whittaker_teach bench derivation``: in fresh processes, the time
 to build the sledge, derive every step of the paper and verify them all,
@@ -170,6 +171,39 @@ def run_peer(n, holonomic):
     return {"peer": time.process_time() - t0, "ok": True}
 
 
+# One process imports everything once; each measurement runs in a process forked
+# from it (as fresh as a new process after the imports, without paying the imports
+# again: 18 fresh processes spent about 25 s of the 30 s of `--n 2..4` importing).
+_SERVER = """
+import gc, json, os, sys, tracemalloc
+import sympy, sympy.physics.mechanics, sympy.calculus.euler, mpmath
+from whittaker_teach import bench, system, reduction, nielsen, steps, verify
+gc.collect()
+gc.freeze()
+for line in sys.stdin:
+    job = json.loads(line)
+    r, w = os.pipe()
+    pid = os.fork()
+    if pid == 0:
+        os.close(r)
+        try:
+            if job["traced"]:
+                tracemalloc.start()
+            out = getattr(bench, job["fn"])(job["n"], job["holonomic"])
+            if job["traced"]:
+                out = {"peak": tracemalloc.get_traced_memory()[1] / 2**20, "ok": out["ok"]}
+        except BaseException as exc:
+            out = {"error": f"{type(exc).__name__}: {exc}"}
+        with os.fdopen(w, "w") as f:
+            f.write(json.dumps(out))
+        os._exit(0)
+    os.close(w)
+    with os.fdopen(r) as f:
+        text = f.read()
+    os.waitpid(pid, 0)
+    print(text or json.dumps({"error": "the measuring process died"}), flush=True)
+"""
+
 _CHILD = """
 import json, sys, tracemalloc
 import sympy, sympy.physics.mechanics, sympy.calculus.euler, mpmath
@@ -184,24 +218,53 @@ print(json.dumps(out))
 """
 
 
-def _child(fn, n, holonomic, traced=False):
-    code = _CHILD.format(fn=fn, n=n, hol=holonomic, traced=traced)
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         check=True).stdout.strip().splitlines()[-1]
-    return json.loads(out)
+class _Measurer:
+    """Runs ``bench.<fn>(n, holonomic)`` in a fresh process after the imports: forked
+    from one server process where ``os.fork`` exists, else a new interpreter each."""
+
+    def __init__(self):
+        self.server = None
+        if hasattr(__import__("os"), "fork"):
+            self.server = subprocess.Popen([sys.executable, "-c", _SERVER], text=True,
+                                           stdin=subprocess.PIPE, stdout=subprocess.PIPE)
+
+    def __call__(self, fn, n, holonomic, traced=False):
+        if self.server is None:
+            code = _CHILD.format(fn=fn, n=n, hol=holonomic, traced=traced)
+            out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                                 check=True).stdout.strip().splitlines()[-1]
+            return json.loads(out)
+        job = {"fn": fn, "n": n, "holonomic": holonomic, "traced": traced}
+        self.server.stdin.write(json.dumps(job) + "\n")
+        self.server.stdin.flush()
+        line = self.server.stdout.readline()
+        out = json.loads(line) if line else {"error": "the benchmark's server process died"}
+        if "error" in out:
+            raise RuntimeError(f"bench {fn}(n={n}, holonomic={holonomic}): {out['error']}")
+        return out
+
+    def close(self):
+        if self.server is not None:
+            self.server.stdin.close()
+            self.server.wait()
+            self.server = None
 
 
 def scale_rows(ns, holonomic, memory=True):
     """One dict per n: times (s), ratio (reduce + verify) / peer, peak memory (MiB)."""
     rows = []
-    for n in ns:
-        ours, peer = _child("run_ours", n, holonomic), _child("run_peer", n, holonomic)
-        row = {"n": n, **ours, **peer}
-        row["ratio"] = (row["reduce"] + row["verify"]) / row["peer"]
-        if memory:
-            row["mem"] = _child("run_ours", n, holonomic, True)["peak"]
-            row["peer_mem"] = _child("run_peer", n, holonomic, True)["peak"]
-        rows.append(row)
+    measure = _Measurer()
+    try:
+        for n in ns:
+            ours, peer = measure("run_ours", n, holonomic), measure("run_peer", n, holonomic)
+            row = {"n": n, **ours, **peer}
+            row["ratio"] = (row["reduce"] + row["verify"]) / row["peer"]
+            if memory:
+                row["mem"] = measure("run_ours", n, holonomic, True)["peak"]
+                row["peer_mem"] = measure("run_peer", n, holonomic, True)["peak"]
+            rows.append(row)
+    finally:
+        measure.close()
     return rows
 
 
@@ -223,7 +286,8 @@ def scale_main(args):
     ns = range(int(lo), int(hi or lo) + 1)
     print("CPU seconds. reduce: build, reduce, (1.26) and q'' solved; verify: every check;\n"
           "peer: LagrangesMethod forming and solving; ratio = (reduce + verify) / peer;\n"
-          "a fresh process each; peak memory (MiB, after the imports) by tracemalloc")
+          "a fresh process each (forked after the imports); peak memory (MiB, after the\n"
+          "imports) by tracemalloc")
     ok = True
     kinds = {"both": (False, True), "nonholonomic": (False,), "holonomic": (True,)}
     for holonomic in kinds[getattr(args, "family", "both")]:

@@ -3,12 +3,14 @@
 The table is recorded with ``record_property("printed", ...)`` and printed at the end
 of the run by the root conftest.py (a pytest-xdist worker's own prints are lost)."""
 
+import pytest
+
 from whittaker_teach import bench
 
 
 def test_scale_benchmark_runs_and_prints(record_property):
     for holonomic in (False, True):
-        rows = bench.scale_rows(range(2, 5), holonomic, memory=holonomic)
+        rows = bench.scale_rows(range(2, 5), holonomic, memory=False)
         assert [r["n"] for r in rows] == [2, 3, 4]
         assert all(r["ok"] for r in rows)          # every check of the derivation held
         table = bench.scale_table(rows, "holonomic family" if holonomic
@@ -16,6 +18,23 @@ def test_scale_benchmark_runs_and_prints(record_property):
         record_property("printed", "\n" + table)      # the figures go to the CI log
         assert len(table.splitlines()) == 5 and "verify/reduce" in table
         assert all(r["reduce"] > 0 and r["verify"] > 0 and r["peer"] > 0 for r in rows)
+
+
+def test_peak_memory_is_measured():
+    """The traced runs (tracemalloc slows a run about five times: n = 2 only here)."""
+    [row] = bench.scale_rows([2], holonomic=True, memory=True)
+    assert 0.1 < row["peer_mem"] < row["mem"] < 100       # MiB, after the imports
+    assert "MiB" in bench.scale_table([row], "t") and f"{row['mem']:9.1f}" in bench.scale_table([row], "t")
+
+
+def test_a_failing_measurement_names_the_job():
+    measure = bench._Measurer()
+    try:
+        with pytest.raises(RuntimeError, match=r"run_ours\(n=0"):
+            measure("run_ours", 0, False)
+        assert measure("run_peer", 2, False)["peer"] > 0      # the server goes on
+    finally:
+        measure.close()
 
 
 def test_family_shapes():
