@@ -8,7 +8,8 @@
 #   make serve      serve _build/html on http://127.0.0.1:8000 (JupyterLite needs http)
 #   make pdf        the whole book as one PDF (_build/pdf/whittaker-teach.pdf, linked from the site)
 #   make test       setup, then unit + integration tests, doctests, nbval over the
-#                   stored notebook outputs, the site build, the PDF and the browser/PDF tests
+#                   stored notebook outputs (the site and its PDF built beside them),
+#                   then the browser/PDF tests
 #   make notebooks  re-execute every notebook in book/ and exercises/ in place
 #   make clean      remove everything generated
 #
@@ -99,10 +100,19 @@ pdf: setup sysdeps
 	$(PYTHON) scripts/make_pdf.py
 
 # ---------------------------------------------------------------- tests
-# --keep-going: every part runs and reports even if an earlier one failed;
-# `make test` still fails if any part failed.
+# The site and the PDF are built beside the Python tests (they leave a core idle
+# for most of their minute), their log printed when both are done; then the browser
+# test. Every part runs and reports even if an earlier one failed; `make test`
+# still fails if any part failed.
 test: setup
-	@$(MAKE) --no-print-directory --keep-going unit doctest nbval site pdf-after-site browser
+	@mkdir -p _build/logs; log=_build/logs/site-and-pdf.log; status=0; \
+	set -m; $(MAKE) --no-print-directory site pdf-after-site > $$log 2>&1 & site=$$!; set +m; \
+	trap 'kill -- -'$$site' 2>/dev/null || true' EXIT INT TERM; \
+	echo "test: building the site and the PDF beside the Python tests (log: $$log)"; \
+	$(MAKE) --no-print-directory --keep-going unit doctest nbval || status=1; \
+	if wait $$site; then cat $$log; else status=1; cat $$log; echo "test: the site or the PDF failed (log above: $$log)"; fi; \
+	$(MAKE) --no-print-directory browser || status=1; \
+	exit $$status
 
 # tests/unit and tests/integration; a folder without test files is skipped
 # (pytest would exit 5, "no tests collected").
