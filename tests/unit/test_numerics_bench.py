@@ -58,8 +58,20 @@ def test_summary_and_table(tiny):
         r["error"] for r in tiny["runs"] if r["model"] == "full")
     text = wp.summary(tiny)
     assert "floor" in text and "package / numpy+scipy" in text
-    for block in (text, wp.table(tiny)):
-        assert max(len(line) for line in block.splitlines()) <= 80
+    assert max(len(line) for line in text.splitlines()) <= 80
+    assert max(len(line) for line in wp.table(tiny).splitlines()) <= 86
+    assert "floor by distance from the exact path" in text
+    [paired, *_] = tiny["ratios"]["0.3"].values()
+    assert paired["ratio"] == pytest.approx(paired["package"] / paired["hand"])
+    assert f"{paired['ratio']:.2f}" in text and "timed 15 times alternately" in text
+
+
+def test_path_error_leaves_out_only_the_clock(tiny):
+    """Every run: the distance from the path is at most the state error (up to the
+    factor 2 of four components against the largest one), never zero."""
+    for r in tiny["runs"]:
+        if "failed" not in r and r["model"] != "exact":
+            assert 0 < r["err_path"] <= 2 * r["error"], r
     assert wp.to_csv(tiny).splitlines()[0].startswith("amplitude,model,method")
 
 

@@ -24,12 +24,26 @@ quick study does).
 solution, per component and relative to the component's scale: theta against
 the amplitude a, x and y against their largest exact values over the run, t
 (recovered by the reduced model) against the length of the run.  ``error`` is
-the largest of the four.
+the largest of the four: the error of the state at the same time.
+
+**The path error** ``err_path`` is the distance of the run's points from the
+exact path in the same scaled coordinates (x, theta, y, t): each point is
+compared with the nearest point of the exact motion instead of the exact state
+at the run's own time.  An error along the path (a clock running slightly fast
+or slow) counts once, in t, where the state error counts it in every component:
+the reduced model integrates in x and recovers t(x) by quadrature, so a clock
+error dt shifts its theta by thetadot dt and its y by ydot dt as well.  Both floors are
+reported (:func:`floors`).
 
 **The cost** is the number of right-hand-side evaluations (machine
 independent) and the median wall time of :data:`REPEAT` runs, the repeats
 interleaved: the whole run set is timed once, then again, and so on, so that
 a burst of load on the machine spreads over all runs instead of hitting one.
+The package / hand-written ratio for each target is measured apart: the fastest
+package run and the fastest hand-written run that reach the target are timed
+again, alternately, :data:`RATIO_REPEAT` times each, and the ratio is that of
+their medians (a run of a few milliseconds varies by 10-20 % from one timing to
+the next: three repeats are enough to rank runs, not to compare two of them).
 
 Models:
 
@@ -79,6 +93,8 @@ SHORT_METHODS = ("DOP853", "LSODA")
 RTOLS = (1e-3, 1e-5, 1e-7, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 2.3e-14)
 #: DOP853 below scipy's rtol floor (:class:`.ivp.TightDOP853`), and its ladder
 TIGHT = "DOP853-tight"
+#: timings of each side of a package / hand-written comparison (alternately)
+RATIO_REPEAT = 15
 TIGHT_RTOLS = (1e-14, 5e-15, 2e-15, 1e-15, 5e-16)
 #: the models whose ladders DOP853-tight continues
 TIGHT_MODELS = ("full", "full (1.4)", "reduced")
@@ -121,6 +137,31 @@ def _errors(ex, T, t, q, x_scale, y_scale, reduced=False):
         tx = _t_of_x(ex, np.asarray(q["x"]), t)
         out["err_t"] = float(np.max(np.abs(t - tx))) / T
     return out
+
+
+def _path_error(ex, T, t, q, x_scale, y_scale):
+    """The largest distance of the run's points (x, theta, y, t), scaled as the errors
+    are, from the exact path: the nearest exact point of each, by three Gauss-Newton
+    steps along the path from the exact point at the run's own time.
+
+    >>> import whittaker_teach as wt
+    >>> ex = wt.examples.sledge_exact(PARAMS, a=0.3, phi=PHI, C=C)
+    >>> t = np.linspace(0, 5, 6); g = ex(t + 1e-6)      # the right path, a late clock
+    >>> 0.9 < _path_error(ex, 5.0, t, g, 5.0, 1.0) / (1e-6 / 5.0) <= 1.0     # at most dt / T
+    True
+    """
+    t = np.asarray(t, dtype=float)
+    point = np.array([q["x"], q["theta"], q["y"], t], dtype=float).T
+    scale = np.array([x_scale, ex.a, y_scale, T])
+    s = t.copy()
+    for _ in range(3):
+        e = ex(s)
+        r = (point - np.array([e["x"], e["theta"], e["y"], s]).T) / scale
+        d = np.array([e["xdot"], e["thetadot"], e["ydot"], np.ones_like(s)]).T / scale
+        s = s + (r * d).sum(axis=1) / (d * d).sum(axis=1)
+    e = ex(s)
+    r = (point - np.array([e["x"], e["theta"], e["y"], s]).T) / scale
+    return float(np.sqrt((r * r).sum(axis=1)).max())
 
 
 def _scales(ex, T):
@@ -217,8 +258,9 @@ class _Case:
         t, q, nfev, njev, dE = out
         errs = _errors(self.ex, self.T, t, q, self.x_scale, self.y_scale,
                        reduced=model == "reduced")
+        path = _path_error(self.ex, self.T, t, q, self.x_scale, self.y_scale)
         return {**errs, "err_energy": dE, "nfev": int(nfev), "njev": int(njev),
-                "points": int(len(t)), "error": max(errs.values())}
+                "points": int(len(t)), "error": max(errs.values()), "err_path": path}
 
 
 def _exact_error(ex, T, n=4):
@@ -242,6 +284,7 @@ def exact_errors(rec, abs_error, x_scale, y_scale):
     rec["err_x_abs"] = abs_error
     rec["err_x"], rec["err_y"] = abs_error / x_scale, abs_error / y_scale
     rec["error"] = max(rec["err_theta"], rec["err_x"], rec["err_y"], rec["err_t"])
+    rec["err_path"] = rec["error"]          # the closed form's clock is exact
 
 
 # ----------------------------------------------------------------- the run set
@@ -332,8 +375,44 @@ def study(quick=False, progress=True, amplitudes=AMPLITUDES, methods=None, rtols
             costs[str(rec["amplitude"])] = {"grid1000": rec["seconds"]}
     meta = _meta(periods, repeat, amplitudes, rtols)
     meta["tight_rtols"] = list(TIGHT_RTOLS) if tight else []
-    return {"meta": meta, "runs": runs,
-            "exact_cost": costs}
+    results = {"meta": meta, "runs": runs, "exact_cost": costs}
+    results["ratios"] = _paired_ratios(results, dict((id(rec), fn) for rec, fn in fns),
+                                       RATIO_REPEAT if repeat > 1 else repeat)
+    meta["ratio_repeat"] = RATIO_REPEAT if repeat > 1 else repeat
+    return results
+
+
+def _paired_ratios(results, fn_of, repeat):
+    """{amplitude: {target: {"package", "hand", "ratio", "runs"}}}: the fastest package run
+    and the fastest hand-written run reaching each target, timed again alternately
+    ``repeat`` times each; the medians and their ratio."""
+    by_time = cheapest(results, by="seconds")
+    out = {}
+    for a, per in by_time.items():
+        out[str(a)] = {}
+        for tgt, row in per.items():
+            if tgt == "floor":
+                continue
+            pk = [r for m, r in row.items() if m in PACKAGE_MODELS and r]
+            hw = row.get("numpy+scipy")
+            if not pk or not hw:
+                continue
+            pk = min(pk, key=lambda r: r["seconds"])
+            fp, fh = fn_of[id(pk)], fn_of[id(hw)]
+            tp, th = [], []
+            for _ in range(repeat):
+                t0 = time.perf_counter()
+                fp()
+                tp.append(time.perf_counter() - t0)
+                t0 = time.perf_counter()
+                fh()
+                th.append(time.perf_counter() - t0)
+            mp_, mh = statistics.median(tp), statistics.median(th)
+            out[str(a)][f"{tgt:.0e}"] = {
+                "package": mp_, "hand": mh, "ratio": mp_ / mh,
+                "runs": [[pk["model"], pk["method"], pk["setting"]],
+                         [hw["model"], hw["method"], hw["setting"]]]}
+    return out
 
 
 class _NoBar:
@@ -396,14 +475,16 @@ def run_set(results):
     return [(r["amplitude"], r["model"], r["method"], r["setting"]) for r in results["runs"]]
 
 
-def floors(results):
-    """{amplitude: {model: the run with the smallest error}}."""
+def floors(results, measure="error"):
+    """{amplitude: {model: the run with the smallest error}}; ``measure="err_path"``: the
+    smallest distance from the exact path instead (see the module's docstring)."""
     out = {}
     for a in results["meta"]["amplitudes"]:
         out[a] = {}
         for model in MODELS:
-            rs = [r for r in _done(results) if r["amplitude"] == a and r["model"] == model]
-            out[a][model] = min(rs, key=lambda r: (r["error"], r["nfev"])) if rs else None
+            rs = [r for r in _done(results) if r["amplitude"] == a and r["model"] == model
+                  and measure in r]
+            out[a][model] = min(rs, key=lambda r: (r[measure], r["nfev"])) if rs else None
     return out
 
 
@@ -445,10 +526,11 @@ def _setting(r):
 
 
 def table(results):
-    """Every run as a text table (80 columns), one block per amplitude."""
+    """Every run as a text table (86 columns), one block per amplitude: the errors of the
+    state per component, the distance from the exact path, the cost."""
     lines = []
     head = (f"{'model':11s} {'method':12s} {'setting':>10s} {'theta':>6s} {'x':>6s} "
-            f"{'y':>6s} {'t':>6s} {'nfev':>6s} {'ms':>7s}")
+            f"{'y':>6s} {'t':>6s} {'path':>6s} {'nfev':>6s} {'ms':>7s}")
     for a in results["meta"]["amplitudes"]:
         lines += [f"amplitude a = {a:g} (errors relative to each component's scale)", head]
         for r in results["runs"]:
@@ -461,7 +543,8 @@ def table(results):
                 continue
             lines.append(f"{r['model']:11s} {meth:12s} {_setting(r):>10s} "
                          f"{r['err_theta']:6.0e} {r['err_x']:6.0e} {r['err_y']:6.0e} "
-                         f"{r['err_t']:6.0e} {r['nfev']:6d} {1e3 * r['seconds']:7.1f}")
+                         f"{r['err_t']:6.0e} {r.get('err_path', math.nan):6.0e} "
+                         f"{r['nfev']:6d} {1e3 * r['seconds']:7.1f}")
         lines.append("")
     return "\n".join(lines)
 
@@ -480,9 +563,17 @@ def summary_rows(results, targets=TARGETS):
     return rows
 
 
-def _ratio(row):
-    """package / hand-written: the cheapest full-model run (by time) of each."""
-    pk = [r for m, r in row.items() if m in ("full", "full (1.4)", "reduced") and r]
+PACKAGE_MODELS = ("full", "full (1.4)", "reduced")
+
+
+def _ratio(results, a, tgt, row):
+    """package / hand-written for a target: the paired re-timing of the fastest run of
+    each (:func:`_paired_ratios`); from the study's own medians for results that
+    have none (older files)."""
+    paired = results.get("ratios", {}).get(str(a), {}).get(f"{tgt:.0e}")
+    if paired:
+        return paired["ratio"]
+    pk = [r for m, r in row.items() if m in PACKAGE_MODELS and r]
     hw = row.get("numpy+scipy")
     if not pk or not hw:
         return None
@@ -507,9 +598,20 @@ def summary(results, targets=TARGETS):
                 meth = "" if model == "exact" else f"{r['method']} {_setting(r)}"
                 lines.append(f"    {model:11s} {meth:20s} err {r['error']:7.1e}  nfev "
                              f"{r['nfev']:6d}  {1e3 * r['seconds']:8.2f} ms")
-            ratio = _ratio(by_time[a][tgt]) if tgt != "floor" else None
+            ratio = _ratio(results, a, tgt, by_time[a][tgt]) if tgt != "floor" else None
             if ratio is not None:
-                lines.append(f"    package / numpy+scipy (fastest of each): {ratio:.2f}")
+                n = results["meta"].get("ratio_repeat")
+                how = f"fastest of each, timed {n} times alternately" if n else "fastest of each"
+                lines.append(f"    package / numpy+scipy ({how}): {ratio:.2f}")
+        path = floors(results, "err_path")[a]
+        if any(path.values()):
+            lines.append("  floor by distance from the exact path (the clock's error left out)")
+            for model in MODELS:
+                r = path[model]
+                if r is not None:
+                    meth = "" if model == "exact" else f"{r['method']} {_setting(r)}"
+                    lines.append(f"    {model:11s} {meth:20s} path {r['err_path']:7.1e}  "
+                                 f"(state {r['error']:7.1e})")
         lines.append("")
     return "\n".join(lines)
 
@@ -517,7 +619,7 @@ def summary(results, targets=TARGETS):
 def to_csv(results):
     """Every run as CSV text (one row per run, the failed ones included)."""
     cols = ["amplitude", "model", "method", "setting", "error", "err_theta", "err_x", "err_y",
-            "err_t", "err_energy", "nfev", "njev", "points", "seconds", "failed"]
+            "err_t", "err_path", "err_energy", "nfev", "njev", "points", "seconds", "failed"]
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(cols)
