@@ -63,7 +63,7 @@ def test_summary_and_table(tiny):
     assert "floor by distance from the exact path" in text
     [paired, *_] = tiny["ratios"]["0.3"].values()
     assert paired["ratio"] == pytest.approx(paired["package"] / paired["hand"])
-    assert f"{paired['ratio']:.2f}" in text and "timed 15 times alternately" in text
+    assert f"{paired['ratio']:.2f}" in text and "full model, timed 15 times alternately" in text
 
 
 def test_path_error_leaves_out_only_the_clock(tiny):
