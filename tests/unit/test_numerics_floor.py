@@ -1,11 +1,13 @@
 """The error floor: DOP853 below scipy's rtol floor (method "DOP853-tight") takes the
-paper's form (1.4) of the sledge to within 100 machine epsilons of the exact motion."""
+paper's form (1.4) of the sledge to within 100 machine epsilons of the exact motion,
+and the reduced model to within 100 machine epsilons of the exact path (its state,
+compared at its own recovered time, carries the clock's error in every component)."""
 
 import numpy as np
 import pytest
 
 import whittaker_teach as wt
-from whittaker_teach.numerics.work_precision import _errors, _scales
+from whittaker_teach.numerics.work_precision import _errors, _path_error, _scales
 
 P = {"m": 1.0, "J": 1.0, "k": 1.0}
 EPS100 = 100 * np.finfo(float).eps            # 2.2e-14
@@ -43,3 +45,17 @@ def test_tight_method_warns_nothing(S, red, recwarn):
     q0, qp0, h = ex.reduced_initial()
     red.simulate(q0, qp0, h, (0, 1), P, method="DOP853-tight", rtol=1e-15)
     assert not [w for w in recwarn if "rtol" in str(w.message)]
+
+
+@pytest.mark.parametrize("a", [0.3, 1.5])
+def test_reduced_model_reaches_100_machine_epsilons_of_the_path(red, a):
+    ex = wt.examples.sledge_exact(P, a=a, phi=0.3, C=1.0)
+    T = 10 * ex.period
+    xs, ys = _scales(ex, T)
+    q0, qp0, h = ex.reduced_initial()
+    path = red.simulate(q0, qp0, h, (q0["x"], ex(T)["x"]), P, method="DOP853-tight",
+                        rtol=1e-15, atol=1e-20, dense=False)
+    along = _path_error(ex, T, path.t, path.q, xs, ys)
+    state = max(_errors(ex, T, path.t, path.q, xs, ys, reduced=True).values())
+    assert along <= EPS100, along
+    assert state > 2 * along, (state, along)      # the clock's error, counted in theta and y
