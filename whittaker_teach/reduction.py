@@ -541,19 +541,26 @@ class Reduction:
         return st
 
     def _step_127(self):
-        """(1.27): Whittaker's equations, by sympy's euler_equations on L* (another route)."""
-        from sympy.calculus.euler import euler_equations
+        """(1.27): Whittaker's equations d/dq_eps(dL*/dq'_nu) - dL*/dq_nu = 0, by another
+        route than (1.26): SymPy's own ``diff`` (not :func:`.dag.diff`) on L*, and
+        d/dq_eps along the path as the derivative in s of
+        f(q_eps + s, q + s q', q' + s q'') at s = 0 (what sympy's ``euler_equations``
+        does with functions of q_eps, at a quarter of its cost)."""
         x = self.independent
-        el = euler_equations(self.L_star, self.coordinates, x)
-        back = {}
-        for c, f in zip(self._nus, self.coordinates):
-            back[f.diff(x, 2)] = self._qpp[c]
-            back[f.diff(x)] = self._qp[c]
-            back[f] = self.system.q[c]
-        e27 = [-eq.lhs.xreplace(back) for eq in el]
+        qs = [self.system.q[c] for c in self._nus]
+        qps = [self._qp[c] for c in self._nus]
+        s = sp.Dummy("s")
+        along = {x: x + s}
+        along.update({q: q + s * p for q, p in zip(qs, qps)})
+        along.update({p: p + s * self._qpp[c] for p, c in zip(qps, self._nus)})
+        e27 = []
+        for q, p in zip(qs, qps):
+            momentum = sp.diff(self._Lstar, p)
+            rate = sp.diff(momentum.xreplace(along), s).xreplace({s: 0})
+            e27.append(rate - sp.diff(self._Lstar, q))
         chk = check_identity("1.27", "for $g = 0$, (1.26) is Whittaker's (1.27): the "
-                             "Euler-Lagrange equations of $L^*$ (sympy's euler_equations) agree",
-                             e27, self._eqs, self._sample)
+                             "Euler-Lagrange equations of $L^*$ (differentiated by SymPy's "
+                             "own diff) agree", e27, self._eqs, self._sample)
         return Step("1.27", "Whittaker's equations ($g = 0$)", [eq(e, 0) for e in e27], chk)
 
     @property
