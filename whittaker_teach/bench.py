@@ -19,6 +19,7 @@ the time of ``import whittaker_teach``.  Each figure is the median over
 """
 
 import json
+import os
 import statistics
 import subprocess
 import sys
@@ -171,27 +172,38 @@ def run_peer(n, holonomic):
     return {"peer": time.process_time() - t0, "ok": True}
 
 
+def _measured(fn, n, holonomic, traced=False):
+    """``bench.<fn>(n, holonomic)`` in this process; with ``traced``, its peak memory
+    (MiB, tracemalloc started here, after the imports) instead of its times."""
+    import tracemalloc
+    if traced:
+        tracemalloc.start()
+    out = globals()[fn](n, holonomic)
+    if traced:
+        out = {"peak": tracemalloc.get_traced_memory()[1] / 2**20, "ok": out["ok"]}
+        tracemalloc.stop()
+    return out
+
+
+_IMPORTS = """
+import gc, json, os, sys
+import sympy, sympy.physics.mechanics, sympy.calculus.euler, mpmath
+from whittaker_teach import bench, system, reduction, nielsen, steps, verify
+"""
+
 # One process imports everything once; each measurement runs in a process forked
 # from it (as fresh as a new process after the imports, without paying the imports
 # again: 18 fresh processes spent about 25 s of the 30 s of `--n 2..4` importing).
-_SERVER = """
-import gc, json, os, sys, tracemalloc
-import sympy, sympy.physics.mechanics, sympy.calculus.euler, mpmath
-from whittaker_teach import bench, system, reduction, nielsen, steps, verify
+_SERVER = _IMPORTS + """
 gc.collect()
 gc.freeze()
 for line in sys.stdin:
-    job = json.loads(line)
     r, w = os.pipe()
     pid = os.fork()
     if pid == 0:
         os.close(r)
         try:
-            if job["traced"]:
-                tracemalloc.start()
-            out = getattr(bench, job["fn"])(job["n"], job["holonomic"])
-            if job["traced"]:
-                out = {"peak": tracemalloc.get_traced_memory()[1] / 2**20, "ok": out["ok"]}
+            out = bench._measured(**json.loads(line))
         except BaseException as exc:
             out = {"error": f"{type(exc).__name__}: {exc}"}
         with os.fdopen(w, "w") as f:
@@ -204,17 +216,9 @@ for line in sys.stdin:
     print(text or json.dumps({"error": "the measuring process died"}), flush=True)
 """
 
-_CHILD = """
-import json, sys, tracemalloc
-import sympy, sympy.physics.mechanics, sympy.calculus.euler, mpmath
-from whittaker_teach import bench, system, reduction, nielsen, steps, verify
-traced = {traced}
-if traced:
-    tracemalloc.start()
-out = getattr(bench, {fn!r})({n}, {hol})
-if traced:
-    out = {{"peak": tracemalloc.get_traced_memory()[1] / 2**20, "ok": out["ok"]}}
-print(json.dumps(out))
+# A new interpreter for each measurement (where there is no os.fork).
+_CHILD = _IMPORTS + """
+print(json.dumps(bench._measured({fn!r}, {n}, {hol}, {traced})))
 """
 
 
@@ -224,7 +228,7 @@ class _Measurer:
 
     def __init__(self):
         self.server = None
-        if hasattr(__import__("os"), "fork"):
+        if hasattr(os, "fork"):
             self.server = subprocess.Popen([sys.executable, "-c", _SERVER], text=True,
                                            stdin=subprocess.PIPE, stdout=subprocess.PIPE)
 
@@ -234,7 +238,7 @@ class _Measurer:
             out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                                  check=True).stdout.strip().splitlines()[-1]
             return json.loads(out)
-        job = {"fn": fn, "n": n, "holonomic": holonomic, "traced": traced}
+        job = {"fn": fn, "n": n, "holonomic": holonomic, "traced": traced}  # _measured's
         self.server.stdin.write(json.dumps(job) + "\n")
         self.server.stdin.flush()
         line = self.server.stdout.readline()

@@ -42,3 +42,11 @@ def test_family_shapes():
     assert len(coords) == 5 and len(dep) == 2
     L, coords, dep = bench.family(4, holonomic=True)
     assert len(coords) == 4 and dep == {}
+
+
+def test_without_fork_each_measurement_is_a_new_interpreter(monkeypatch):
+    monkeypatch.delattr(bench.os, "fork")
+    measure = bench._Measurer()
+    assert measure.server is None
+    assert measure("run_peer", 2, True)["peer"] > 0
+    assert measure("run_peer", 2, True, traced=True)["peak"] > 0
