@@ -33,8 +33,8 @@ compared with the nearest point of the exact motion instead of the exact state
 at the run's own time.  An error along the path (a clock running slightly fast
 or slow) counts once, in t, where the state error counts it in every component:
 the reduced model integrates in x and recovers t(x) by quadrature, so a clock
-error dt shifts its theta by thetadot dt and its y by ydot dt as well.  Both floors are
-reported (:func:`floors`).
+error dt shifts its theta by thetadot dt and its y by ydot dt as well.  Both
+floors are reported (:func:`floors`).
 
 **The cost** is the number of right-hand-side evaluations (machine
 independent) and the median wall time of :data:`REPEAT` runs, the repeats
@@ -43,8 +43,9 @@ a burst of load on the machine spreads over all runs instead of hitting one.
 The package / hand-written ratio for each target is measured apart: the cheapest
 run (by evaluations) of the package's full model and of the hand-written version of
 the same equations that reach the target are timed again, alternately,
-:data:`RATIO_REPEAT` times each, and the ratio is that of their medians (a run of a few milliseconds varies by 10-20 % from one timing to
-the next: three repeats are enough to rank runs, not to compare two of them).
+:data:`RATIO_REPEAT` times each, and the ratio is that of their medians (a run
+of a few milliseconds varies by 10-20 % from one timing to the next: three
+repeats are enough to rank runs, not to compare two of them).
 
 Models:
 
@@ -380,9 +381,9 @@ def study(quick=False, progress=True, amplitudes=AMPLITUDES, methods=None, rtols
     meta = _meta(periods, repeat, amplitudes, rtols)
     meta["tight_rtols"] = list(TIGHT_RTOLS) if tight else []
     results = {"meta": meta, "runs": runs, "exact_cost": costs}
-    results["ratios"] = _paired_ratios(results, dict((id(rec), fn) for rec, fn in fns),
-                                       RATIO_REPEAT if repeat > 1 else repeat)
     meta["ratio_repeat"] = RATIO_REPEAT if repeat > 1 else repeat
+    results["ratios"] = (_paired_ratios(results, {id(rec): fn for rec, fn in fns},
+                                        meta["ratio_repeat"]) if repeat > 0 else {})
     return results
 
 
@@ -565,27 +566,16 @@ def summary_rows(results, targets=TARGETS):
     return rows
 
 
-PACKAGE_MODELS = ("full", "full (1.4)", "reduced")
-
-
-def _ratio(results, a, tgt, row):
-    """package / hand-written for a target: the paired re-timing of the fastest run of
-    each (:func:`_paired_ratios`); from the study's own medians for results that
-    have none (older files)."""
+def _ratio(results, a, tgt):
+    """package / hand-written for a target, from the paired re-timing
+    (:func:`_paired_ratios`), or None."""
     paired = results.get("ratios", {}).get(str(a), {}).get(f"{tgt:.0e}")
-    if paired:
-        return paired["ratio"]
-    pk = [r for m, r in row.items() if m in PACKAGE_MODELS and r]
-    hw = row.get("numpy+scipy")
-    if not pk or not hw:
-        return None
-    return min(r["seconds"] for r in pk) / hw["seconds"]
+    return paired["ratio"] if paired else None
 
 
 def summary(results, targets=TARGETS):
     """The cheapest run of every model for each target and the floor (80 columns)."""
     best = cheapest(results, targets)
-    by_time = cheapest(results, targets, by="seconds")
     lines = []
     for a, per in best.items():
         lines.append(f"a = {a:g}: cheapest run (by evaluations) with error <= target")
@@ -600,14 +590,14 @@ def summary(results, targets=TARGETS):
                 meth = "" if model == "exact" else f"{r['method']} {_setting(r)}"
                 lines.append(f"    {model:11s} {meth:20s} err {r['error']:7.1e}  nfev "
                              f"{r['nfev']:6d}  {1e3 * r['seconds']:8.2f} ms")
-            ratio = _ratio(results, a, tgt, by_time[a][tgt]) if tgt != "floor" else None
+            ratio = _ratio(results, a, tgt) if tgt != "floor" else None
             if ratio is not None:
-                n = results["meta"].get("ratio_repeat")
-                how = f"full model, timed {n} times alternately" if n else "fastest of each"
-                lines.append(f"    package / numpy+scipy ({how}): {ratio:.2f}")
+                n = results["meta"]["ratio_repeat"]
+                lines.append(f"    package / numpy+scipy (full model, timed {n} times "
+                             f"alternately): {ratio:.2f}")
         path = floors(results, "err_path")[a]
         if any(path.values()):
-            lines.append("  floor by distance from the exact path (the clock's error left out)")
+            lines.append("  floor by distance from the exact path (a clock error counted once)")
             for model in MODELS:
                 r = path[model]
                 if r is not None:
