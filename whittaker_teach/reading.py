@@ -214,15 +214,17 @@ def cleared_forms(red):
     A q''_nu larger than ``rewrite.RATIONAL_OPS_LIMIT`` operations has no one-fraction
     reading form (``rewrite.rational`` leaves it as it is) and gets no cleared form:
     the list then has fewer entries than q_nu, and the step says so."""
-    out = []
-    acc = red._tidy_accelerations()
-    for c in red._nus:
-        a = red._qpp[c]
-        if _ops_above(acc[a], RATIONAL_OPS_LIMIT):
-            continue
-        num, den = sp.fraction(sp.together(acc[a]))
-        out.append(powers_combined(collected(den * a - num, [a] + _primes(red))))
-    return out
+    if "cleared" not in red._cache:
+        out = []
+        acc = red._tidy_accelerations()
+        for c in red._nus:
+            a = red._qpp[c]
+            if _ops_above(acc[a], RATIONAL_OPS_LIMIT):
+                continue
+            num, den = sp.fraction(sp.together(acc[a]))
+            out.append(powers_combined(collected(den * a - num, [a] + _primes(red))))
+        red._cache["cleared"] = out
+    return list(red._cache["cleared"])
 
 
 def total_derivative_form(red):

@@ -540,12 +540,13 @@ class Reduction:
                        rates, chk))
         return st
 
-    def _step_127(self):
-        """(1.27): Whittaker's equations d/dq_eps(dL*/dq'_nu) - dL*/dq_nu = 0, by another
-        route than (1.26): SymPy's own ``diff`` (not :func:`.dag.diff`) on L*, and
-        d/dq_eps along the path as the derivative in s of
-        f(q_eps + s, q + s q', q' + s q'') at s = 0 (what sympy's ``euler_equations``
-        does with functions of q_eps, at a quarter of its cost)."""
+    def _whittaker_127(self, differentiate=None):
+        """Whittaker's equations (1.27), d/dq_eps(dL*/dq'_nu) - dL*/dq_nu, one per q_nu,
+        by a route other than (1.26)'s: d/dq_eps along the path is the derivative in s of
+        f(q_eps + s, q + s q', q' + s q'') at s = 0 (not the chain-rule sum ``_D``).
+        ``differentiate(f, z)`` defaults to :func:`.dag.diff`; ``sp.diff`` gives the same
+        expressions (the unit tests compare the two routes)."""
+        d = differentiate or (lambda f, z: diff(f, z, self._cache.setdefault("d127", {})))
         x = self.independent
         qs = [self.system.q[c] for c in self._nus]
         qps = [self._qp[c] for c in self._nus]
@@ -553,14 +554,20 @@ class Reduction:
         along = {x: x + s}
         along.update({q: q + s * p for q, p in zip(qs, qps)})
         along.update({p: p + s * self._qpp[c] for p, c in zip(qps, self._nus)})
-        e27 = []
+        out = []
         for q, p in zip(qs, qps):
-            momentum = sp.diff(self._Lstar, p)
-            rate = sp.diff(momentum.xreplace(along), s).xreplace({s: 0})
-            e27.append(rate - sp.diff(self._Lstar, q))
+            rate = substitute(d(substitute(d(self._Lstar, p), along), s), {s: sp.S.Zero})
+            out.append(rate - d(self._Lstar, q))
+        return out
+
+    def _step_127(self):
+        """(1.27): Whittaker's equations, the Euler-Lagrange equations of L* with q_eps
+        as the independent variable, checked against (1.26) for g = 0."""
+        e27 = self._whittaker_127()
         chk = check_identity("1.27", "for $g = 0$, (1.26) is Whittaker's (1.27): the "
-                             "Euler-Lagrange equations of $L^*$ (differentiated by SymPy's "
-                             "own diff) agree", e27, self._eqs, self._sample)
+                             "Euler-Lagrange equations of $L^*$, with $d/dq_\\varepsilon$ taken "
+                             "along the path (not by the chain rule of (1.26)), agree", e27,
+                             self._eqs, self._sample)
         return Step("1.27", "Whittaker's equations ($g = 0$)", [eq(e, 0) for e in e27], chk)
 
     @property

@@ -8,8 +8,7 @@ import random
 import mpmath
 import sympy as sp
 
-from ..reading import TotalD
-from ..rewrite import collected
+from ..reading import TotalD, cleared_forms
 from ..steps import Step, eq, notation
 from ..verify import DPS, Check, check_identity, check_zero
 
@@ -90,7 +89,7 @@ def section3_steps(red):
         "3.9", r"the form shown equals (1.26) (the OCR's last term lacks the root of "
         r"$2h - k^2\theta^2$ and the factor $1 + \tan^2\theta$)", printed, red._eqs[0], smp)))
     qpp = red._tidy_accelerations()[thpp]
-    cleared = collected(J * R * (thpp - qpp), [thpp, thp])
+    (cleared,) = cleared_forms(red)      # J R theta'' - N, with theta''_(1.26b) = N / (J R)
     printed = J * R * thpp + J * (-R * sp.tan(th) + k**2 * th) * thp**2 + m * k**2 * th * sec2
     st.append(Step("3.10", r"(1.26) cleared of denominators: $J(2h - k^2\theta^2)\,(\theta'' "
                    r"- \theta''_{(1.26b)})$", [eq(cleared, 0)], check_identity(
