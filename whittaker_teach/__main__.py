@@ -8,7 +8,7 @@ Commands::
                                   each with its paper number and its check
     bench derivation [--repeat N] fresh-process time of the whole derivation with
                                   verification, against sympy.physics.mechanics
-    bench derivation --scale [--n 2..8] [--family F] [--no-memory]
+    bench derivation --scale [--n 2..8] [--family F] [--no-memory] [--repeat N]
                                   the same for families of n coordinates: a table of
                                   reduce, verify and peer times and peak memory
     bench numerics [--quick] [--json FILE] [--csv FILE] [--plot FILE] [--quiet]

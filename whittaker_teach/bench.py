@@ -254,13 +254,18 @@ class _Measurer:
             self.server = None
 
 
-def scale_rows(ns, holonomic, memory=True):
-    """One dict per n: times (s), ratio (reduce + verify) / peer, peak memory (MiB)."""
+def scale_rows(ns, holonomic, memory=True, repeat=1):
+    """One dict per n: times (s, the median of ``repeat`` runs of each side, alternating),
+    ratio (reduce + verify) / peer, peak memory (MiB)."""
     rows = []
     measure = _Measurer()
     try:
         for n in ns:
-            ours, peer = measure("run_ours", n, holonomic), measure("run_peer", n, holonomic)
+            runs = [(measure("run_ours", n, holonomic), measure("run_peer", n, holonomic))
+                    for _ in range(repeat)]
+            ours = {k: statistics.median(o[k] for o, _ in runs) for k in ("reduce", "verify")}
+            ours["ok"] = all(o["ok"] for o, _ in runs)
+            peer = {"peer": statistics.median(p["peer"] for _, p in runs)}
             row = {"n": n, **ours, **peer}
             row["ratio"] = (row["reduce"] + row["verify"]) / row["peer"]
             if memory:
@@ -288,14 +293,15 @@ def scale_table(rows, title):
 def scale_main(args):
     lo, _, hi = args.n.partition("..")
     ns = range(int(lo), int(hi or lo) + 1)
+    repeat = max(1, getattr(args, "repeat", 1))
     print("CPU seconds. reduce: build, reduce, (1.26) and q'' solved; verify: every check;\n"
           "peer: LagrangesMethod forming and solving; ratio = (reduce + verify) / peer;\n"
-          "a fresh process each (forked after the imports); peak memory (MiB, after the\n"
-          "imports) by tracemalloc")
+          f"medians of {repeat} runs, each in a fresh process (forked after the imports);\n"
+          "peak memory (MiB, after the imports) by tracemalloc")
     ok = True
     kinds = {"both": (False, True), "nonholonomic": (False,), "holonomic": (True,)}
     for holonomic in kinds[getattr(args, "family", "both")]:
-        rows = scale_rows(ns, holonomic, memory=not args.no_memory)
+        rows = scale_rows(ns, holonomic, memory=not args.no_memory, repeat=repeat)
         title = ("holonomic family" if holonomic else
                  "non-holonomic family (g = (n - 1) // 2 constraints)")
         print(scale_table(rows, title), flush=True)
