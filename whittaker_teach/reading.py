@@ -24,7 +24,7 @@ from __future__ import annotations
 import sympy as sp
 
 from .dag import expanded_terms, tree_size
-from .rewrite import RATIONAL_OPS_LIMIT, _ops_above, collected, pythagoras
+from .rewrite import RATIONAL_OPS_LIMIT, _ops_above, collected, factored, pythagoras
 from .verify import check_identity
 
 __all__ = ["TotalD", "powers_combined", "tidy", "evaluate", "check_reading", "velocity_form",
@@ -157,7 +157,7 @@ def _factored(e):
     multivariate polynomial can take minutes, and the form is only for reading)."""
     if _ops_above(e, RATIONAL_OPS_LIMIT) or expanded_terms(e, FACTOR_TERMS_LIMIT) > FACTOR_TERMS_LIMIT:
         return e
-    return sp.factor(sp.expand(e))
+    return factored(sp.expand(e))
 
 
 def velocity_form(red):

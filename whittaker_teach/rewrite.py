@@ -12,7 +12,7 @@ import sympy as sp
 
 from .dag import expanded_terms
 
-__all__ = ["collected", "rational", "pythagoras"]
+__all__ = ["collected", "rational", "pythagoras", "factored"]
 
 #: Above this operation count, a rewrite is skipped and the expression kept as built.
 OPS_LIMIT = 2000
@@ -47,6 +47,27 @@ def _ops_above(expr, limit):
             or expanded_terms(expr, SWELL_LIMIT) > SWELL_LIMIT or sp.count_ops(expr) > limit)
 
 
+_FACTORED = {}
+_FACTORED_LIMIT = 20000
+
+
+def factored(expr):
+    """``sympy.factor(expr)``, remembered: a derivation factors the same coefficient in
+    several places (the mass matrix in (1.4), in (1.12) and in (1.16)), and ``factor``
+    costs some milliseconds even on a small polynomial.
+
+    >>> a, b = sp.symbols("a b")
+    >>> factored(a**2 + 2*a*b + b**2)
+    (a + b)**2
+    """
+    r = _FACTORED.get(expr)
+    if r is None:
+        if len(_FACTORED) >= _FACTORED_LIMIT:
+            _FACTORED.clear()
+        r = _FACTORED[expr] = sp.factor(expr)
+    return r
+
+
 def collected(expr, symbols):
     """``expand``, group the terms by their monomial in ``symbols`` (velocities,
     accelerations) and ``factor`` each coefficient: the form a student would write.
@@ -64,7 +85,7 @@ def collected(expr, symbols):
     for mono, coeffs in groups.items():
         c = sp.Add(*coeffs)
         if not _ops_above(c, FACTOR_LIMIT):
-            c = sp.factor(c)
+            c = factored(c)
         out.append(c * mono)
     return pythagoras(sp.Add(*out))
 
@@ -89,7 +110,7 @@ def rational(expr, symbols=()):
     if _ops_above(expr, RATIONAL_OPS_LIMIT):
         return expr
     num, den = _cancelled(expr)
-    return collected(num, symbols) / pythagoras(sp.factor(den))
+    return collected(num, symbols) / pythagoras(factored(den))
 
 
 def _cancelled(expr):
