@@ -128,19 +128,37 @@ def _tidy(red, expr, symbols):
     key = (expr, tuple(symbols))
     if key not in memo:
         memo[key] = tidy(expr, symbols)
+        red._cache.setdefault("untidy", {}).setdefault(memo[key], expr)
     return memo[key]
 
 
-def evaluate(expr, red):
-    """``expr`` with every :class:`TotalD` carried out (``red._D``: d/dq_eps along a path)."""
-    return expr.replace(lambda e: isinstance(e, TotalD), lambda e: red._D(e.args[0]))
+def evaluate(expr, red, pieces=None):
+    """``expr`` with every :class:`TotalD` carried out (``red._D``: d/dq_eps along a path).
+
+    A TotalD of a tidied piece is carried out on the piece as the library built it (whose
+    derivative the derivation has mostly taken already); the pair (tidied, as built) is
+    then added to ``pieces``, a list, so that a check compares them too: equal functions
+    have equal derivatives along every path, so the two checks together show the form."""
+    untidy = red._cache.get("untidy", {})
+
+    def carried_out(e):
+        f = e.args[0]
+        built = untidy.get(f, f) if pieces is not None else f
+        if built is not f:
+            pieces.append((f, built))
+        return red._D(built)
+    return expr.replace(lambda e: isinstance(e, TotalD), carried_out)
 
 
 def check_reading(label, claim, shown, library, red, sample=None):
     """Check that the reading forms ``shown`` (a list) equal the library's ``library``:
-    exactly by ``expand`` when cheap, else at random admissible points (40 digits)."""
-    return check_identity(label, claim, [evaluate(s, red) for s in shown], list(library),
-                          sample or red._sample)
+    exactly by ``expand`` when cheap, else at random admissible points (40 digits).  Each
+    piece under a d/dq_eps is compared with the piece the library built, and the form
+    with the library's pieces differentiated is compared with ``library``."""
+    pieces = []
+    lhs = [evaluate(s, red, pieces) for s in shown] + [a for a, _ in pieces]
+    rhs = list(library) + [b for _, b in pieces]
+    return check_identity(label, claim, lhs, rhs, sample or red._sample)
 
 
 def _primes(red):
