@@ -296,12 +296,12 @@ class Reduction:
         return self.constraint_rates
 
     # ----- random admissible points --------------------------------------
-    def _energy_fn(self):
-        if "Efn" not in self._cache:
-            E = self.system._energy()
-            syms = sorted(E.free_symbols, key=str)
-            self._cache["Efn"] = (syms, sp.lambdify(syms, E, modules="mpmath", docstring_limit=0))
-        return self._cache["Efn"]
+    def _energy_at(self, pt):
+        """The energy (1.11) at a sampled point (``verify.evaluate``: no code generated)."""
+        import mpmath
+        from .verify import evaluate
+        E = self.system._energy()
+        return evaluate(E, {s: mpmath.mpf(pt[s]) for s in E.free_symbols})
 
     def _sample(self, rng):
         """A random point on the energy surface: h is the energy of the sampled motion."""
@@ -311,13 +311,12 @@ class Reduction:
         v = self.direction * rng.uniform(0.3, 1.5)
         pt[self._v] = v
         pt[S.qd[self._eps]] = v
-        syms, fn = self._energy_fn()
         with mpmath.workdps(DPS):
             for c in self._nus:
                 pt[self._qp[c]] = rng.uniform(-1, 1)
                 pt[self._qpp[c]] = rng.uniform(-1, 1)
                 pt[S.qd[c]] = mpmath.mpf(v) * mpmath.mpf(pt[self._qp[c]])
-            pt[self.h] = fn(*[mpmath.mpf(pt[s]) for s in syms])
+            pt[self.h] = self._energy_at(pt)
         return pt
 
     # ----- steps ----------------------------------------------------------
