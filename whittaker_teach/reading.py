@@ -147,7 +147,21 @@ def evaluate(expr, red, pieces=None):
         if built is not f:
             pieces.append((f, built))
         return red._D(built)
-    return expr.replace(lambda e: isinstance(e, TotalD), carried_out)
+    memo = {}
+
+    def walk(e):                 # each distinct subexpression visited once (dag.substitute)
+        r = memo.get(e)
+        if r is None:
+            if isinstance(e, TotalD):
+                r = carried_out(e)
+            elif not e.args:
+                r = e
+            else:
+                args = [walk(a) for a in e.args]
+                r = e.func(*args) if any(a is not b for a, b in zip(args, e.args)) else e
+            memo[e] = r
+        return r
+    return walk(sp.sympify(expr))
 
 
 def check_reading(label, claim, shown, library, red, sample=None):

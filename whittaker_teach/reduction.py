@@ -500,6 +500,7 @@ class Reduction:
             sub[S.qd[c]] = vs * self._qp[c]
             sub[S.qdd[c]] = vdot * self._qp[c] + vs**2 * self._qpp[c]
         eom = dict(zip(S.independent_coordinates, S._eom()))
+        at = {}                     # one memo: the equations share most of their pieces
         forms = whittaker_forms(self)
         st = [Step("1.26", r"the generalized Whittaker equations, one per $q_\nu$, each "
                    r"derivative carried out but $d/d" + sp.latex(self.independent) + "$",
@@ -507,13 +508,13 @@ class Reduction:
                        "1.26", r"$\dot q_\varepsilon$ times (1.26) is the $\nu$-th equation of "
                        "(1.4) on the energy surface (1.12); the form shown is (1.26)",
                        [vs * e for e in self._eqs] + forms,
-                       [eom[c].xreplace(sub) for c in nus] + self._eqs, self))]
+                       [substitute(eom[c], sub, at) for c in nus] + self._eqs, self))]
         if S.dependent_coordinates:
             st.append(self._momentum_step())
         self._accelerations()       # (1.26) must be solvable for q''
         tidy_acc = self._tidy_accelerations()
         cleared = cleared_forms(self)
-        on = dict(tidy_acc)
+        on, at_q = dict(tidy_acc), {}
         title = r"$q''_\nu$ solved from (1.26), and (1.26) cleared of denominators"
         if len(cleared) < len(nus):
             title += (" (where $q''_\\nu$ is small enough to read as one fraction; "
@@ -521,8 +522,8 @@ class Reduction:
         st.append(Step("1.26b", title, lambda: [eq(k, v) for k, v in tidy_acc.items()]
                        + [eq(c, 0) for c in cleared], check_zero(
                            "1.26b", r"(1.26) and the cleared form vanish at the $q''_\nu$ shown",
-                           [e.xreplace(on) for e in self._eqs]
-                           + [c.xreplace(on) for c in cleared], smp)))
+                           [substitute(e, on, at_q) for e in self._eqs]
+                           + [substitute(c, on, at_q) for c in cleared], smp)))
         if S.is_holonomic:
             st.append(self._step_127())
         x = self.independent

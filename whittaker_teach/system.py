@@ -387,7 +387,7 @@ class ChaplyginSystem:
     def _energy_rate(self):
         """dE/dt along the solutions of (1.4): zero when (1.11) is an integral."""
         E = self._energy()
-        return self._dt(E).xreplace(self._accelerations())
+        return substitute(self._dt(E), self._accelerations())
 
     # ----- random admissible points --------------------------------------
     def _sample_params(self, rng, pt):
@@ -430,8 +430,9 @@ class ChaplyginSystem:
                               [eq(self.qd[c], sp.Function("phi_" + _name(c))(
                                   *[self.q[i] for i in self._sig], *[self.qd[i] for i in self._sig]))
                                for c in self.dependent_coordinates]))
+        at = {}
         chk = check_zero("1.4", "the solved accelerations satisfy (1.4)",
-                         [e.xreplace(self._accelerations()) for e in self._eom()],
+                         [substitute(e, self._accelerations(), at) for e in self._eom()],
                          self._sample_time, seed=4)
         steps.append(Step("1.4", r"the generalized Chaplygin equations, one per $q_\sigma$",
                           [eq(e, 0) for e in self._eom()], chk))

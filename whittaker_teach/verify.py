@@ -296,6 +296,9 @@ def evaluate(expr, memo):
     ...     print(evaluate(sp.sin(x)**2 + sp.cos(x)**2, {x: mpmath.mpf(1)/3}))
     1.0
     """
+    known = _IDS.get(id(expr))
+    if known is not None and known[0] is expr:
+        expr = known[1]            # the representative of its equal copies (_canonical)
     val = memo.get(expr)
     if val is None:
         val = memo[expr] = _FAIL
@@ -307,6 +310,35 @@ def evaluate(expr, memo):
     elif val is _FAIL:
         raise ValueError("this subexpression failed to evaluate at this point")
     return val
+
+
+# Equal subexpressions built apart (a derivative of L* in (1.26) and again in a reading
+# form) are distinct objects; a memo keyed by the expression finds one from the other
+# only through SymPy's structural ``==``, which walks both trees, at every point.  So the
+# expressions of a check are mapped once to one representative per class of equal
+# copies (``_canonical``), and ``evaluate`` looks each object up by its identity.
+_REPS = {}      # expression -> its representative
+_IDS = {}       # id(object) -> (object, representative); the object is kept alive
+
+
+def _canonical(exprs):
+    """Register every subexpression of ``exprs`` with its representative (the first
+    equal one seen); below a copy nothing is registered: its representative's
+    subexpressions are evaluated in its place."""
+    stack = list(exprs)
+    while stack:
+        e = stack.pop()
+        if id(e) in _IDS:
+            continue
+        rep = _REPS.setdefault(e, e)
+        _IDS[id(e)] = (e, rep)
+        if rep is e:
+            stack.extend(e.args)
+
+
+def _forget_canonical():
+    _REPS.clear()
+    _IDS.clear()
 
 
 def _compute(e, memo):
@@ -372,8 +404,9 @@ class shared_points:
 
     def __exit__(self, *exc):
         _SHARED.pop()
-        if not _SHARED:                  # the derivation is done: free the screen's memo
+        if not _SHARED:                  # the derivation is done: free the memos
             _SCREEN_VALUES.clear()
+            _forget_canonical()
         return False
 
 
@@ -394,6 +427,15 @@ def _points(sample, seed):
 def _numeric(lhs, rhs, sample, points, seed):
     """Largest relative residual of lhs - rhs over random points, and the count."""
     pts = _points(sample, seed)
+    _canonical(list(lhs) + list(rhs))
+    try:
+        return _residuals(lhs, rhs, pts, points)
+    finally:
+        if not _SHARED or len(_IDS) > _SCREEN_MEMO_LIMIT:
+            _forget_canonical()
+
+
+def _residuals(lhs, rhs, pts, points):
     worst, used, attempts = 0.0, 0, 0
     with mpmath.workdps(DPS):
         while used < points and attempts < 4 * points:
