@@ -8,6 +8,7 @@ import random
 import mpmath
 import sympy as sp
 
+from ..dag import diff             # SymPy's own rules, each shared piece once
 from ..reading import TotalD, cleared_forms
 from ..steps import Step, eq, notation
 from ..verify import DPS, Check, check_identity, check_zero, evaluate
@@ -101,7 +102,7 @@ def section3_steps(red):
                             "not satisfied by the solutions of (1.26)", ocr.xreplace({thpp: qpp}),
                             smp)))
     F = sp.sqrt((-k**2 * th**2 + 2 * h - m * C**2) / J) / (C * sp.cos(th))
-    along = {thp: F, thpp: F.diff(th) * F}
+    along = {thp: F, thpp: diff(F, th) * F}
     st.append(Step("3.11", "a first integral of (3.10), $C$ a constant",
                    [eq(thp, F)], check_zero(
         "3.11", r"$\theta' = F(\theta)$, $\theta'' = F'(\theta)\,F$ satisfy (3.10) for every $C$",
@@ -131,13 +132,13 @@ def section3_steps(red):
                    check_identity(
         "3.14", r"$\dot\theta = \theta'\dot x$ on (3.11), and $\frac{d\dot\theta}{d\theta}\,"
         r"\dot\theta = -k^2\theta/J$, as (1.4) gives in time",
-        [F * xdot_c, thdot.diff(th) * thdot, S._accelerations()[thdd]],
+        [F * xdot_c, diff(thdot, th) * thdot, S._accelerations()[thdd]],
         [thdot, -k**2 * th / J, -k**2 * th / J], smp_c)))
     sol = a * sp.cos(k / sp.sqrt(J) * t + phi)
     st.append(Step("3.15", "the motion in time; $h = mC^2/2 + k^2a^2/2$",
                    [eq(th, sol), eq(h, m * C**2 / 2 + k**2 * a**2 / 2)], check_zero(
         "3.15", "theta(t) solves (3.14), and thetadot = 0 at theta = a when h = m C^2/2 + "
-        "k^2 a^2/2", [sol.diff(t, 2) + k**2 / J * sol,
+        "k^2 a^2/2", [diff(diff(sol, t), t) + k**2 / J * sol,
                       (-k**2 * th**2 + 2 * h - m * C**2).xreplace(
                           {th: a, h: m * C**2 / 2 + k**2 * a**2 / 2})], smp_c)))
     return st
