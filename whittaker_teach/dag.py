@@ -62,7 +62,8 @@ def max_depth(expr, limit):
 
 def substitute(expr, mapping, memo=None):
     """``expr.xreplace(mapping)``, with each distinct subexpression rebuilt once (``memo``
-    may be shared between calls with the same mapping)."""
+    may be shared between calls with the same mapping).  ``mapping`` is anything with
+    ``in`` and ``[]``: a dict, or an object that replaces every node of a kind."""
     memo = {} if memo is None else memo
     return _walk(sp.sympify(expr), mapping, memo)
 

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from .dag import expanded_terms, tree_size
+from .dag import expanded_terms, substitute, tree_size
 from .rewrite import RATIONAL_OPS_LIMIT, _ops_above, collected, factored, pythagoras
 from .verify import check_identity
 
@@ -141,27 +141,17 @@ def evaluate(expr, red, pieces=None):
     have equal derivatives along every path, so the two checks together show the form."""
     untidy = red._cache.get("untidy", {})
 
-    def carried_out(e):
-        f = e.args[0]
-        built = untidy.get(f, f) if pieces is not None else f
-        if built is not f:
-            pieces.append((f, built))
-        return red._D(built)
-    memo = {}
+    class CarriedOut:            # a "mapping" of every TotalD to its derivative
+        def __contains__(self, e):
+            return isinstance(e, TotalD)
 
-    def walk(e):                 # each distinct subexpression visited once (dag.substitute)
-        r = memo.get(e)
-        if r is None:
-            if isinstance(e, TotalD):
-                r = carried_out(e)
-            elif not e.args:
-                r = e
-            else:
-                args = [walk(a) for a in e.args]
-                r = e.func(*args) if any(a is not b for a, b in zip(args, e.args)) else e
-            memo[e] = r
-        return r
-    return walk(sp.sympify(expr))
+        def __getitem__(self, e):
+            f = e.args[0]
+            built = untidy.get(f, f) if pieces is not None else f
+            if built is not f:
+                pieces.append((f, built))
+            return red._D(built)
+    return substitute(expr, CarriedOut())        # each distinct subexpression once
 
 
 def check_reading(label, claim, shown, library, red, sample=None):

@@ -139,10 +139,9 @@ def _exact_ways(lhs, rhs):
 # It is a prediction, not a proof: where ``expand`` multiplies out a product and so
 # merges two powers of the same sum into another kind of atom (sqrt(X) * sqrt(X) -> X,
 # sqrt(X) * (1/X) -> X**(-1/2)), the atoms disagree and an attempt that would have
-# succeeded is skipped.  On the examples
-# (both directions) and the scale families n = 3..5 it skipped 207 of 246 failing
-# attempts (0.63 s of 0.64 s) and 8 of 551 succeeding ones, which are then verified
-# numerically instead of exactly.
+# succeeded is skipped.  On the examples (both directions) and the scale families
+# n = 3..5 it skipped 207 of 246 failing attempts (0.63 s of 0.64 s) and 8 of 551
+# succeeding ones, which are then verified numerically instead of exactly.
 
 #: a screened value below this, relative to the size of its terms, may be zero
 SCREEN_TOLERANCE = 1e-8
