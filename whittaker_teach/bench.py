@@ -187,7 +187,7 @@ def _measured(fn, n, holonomic, traced=False):
 
 _IMPORTS = """
 import gc, json, os, sys
-import sympy, sympy.physics.mechanics, sympy.calculus.euler, mpmath
+import sympy, sympy.physics.mechanics, mpmath
 from whittaker_teach import bench, system, reduction, nielsen, steps, verify
 """
 

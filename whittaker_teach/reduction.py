@@ -32,6 +32,7 @@ with a ModelError naming (1.13).
 
 from __future__ import annotations
 
+import mpmath
 import sympy as sp
 
 from .coordinates import name as _name, sign_assumptions as _assume
@@ -41,7 +42,7 @@ from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
                       velocity_form, whittaker_forms)
 from .rewrite import collected, rational
 from .steps import Derivation, Report, Step, eq, notation, partial
-from .verify import DPS, check_identity, check_zero, shared_points
+from .verify import DPS, check_identity, check_zero, evaluate, shared_points
 
 __all__ = ["Reduction"]
 
@@ -298,14 +299,11 @@ class Reduction:
     # ----- random admissible points --------------------------------------
     def _energy_at(self, pt):
         """The energy (1.11) at a sampled point (``verify.evaluate``: no code generated)."""
-        import mpmath
-        from .verify import evaluate
         E = self.system._energy()
         return evaluate(E, {s: mpmath.mpf(pt[s]) for s in E.free_symbols})
 
     def _sample(self, rng):
         """A random point on the energy surface: h is the energy of the sampled motion."""
-        import mpmath
         S = self.system
         pt = S._sample_time(rng)
         v = self.direction * rng.uniform(0.3, 1.5)
@@ -544,9 +542,10 @@ class Reduction:
         """Whittaker's equations (1.27), d/dq_eps(dL*/dq'_nu) - dL*/dq_nu, one per q_nu,
         by a route other than (1.26)'s: d/dq_eps along the path is the derivative in s of
         f(q_eps + s, q + s q', q' + s q'') at s = 0 (not the chain-rule sum ``_D``).
-        ``differentiate(f, z)`` defaults to :func:`.dag.diff`; ``sp.diff`` gives the same
-        expressions (the unit tests compare the two routes)."""
-        d = differentiate or (lambda f, z: diff(f, z, self._cache.setdefault("d127", {})))
+        ``differentiate(f, z)`` defaults to ``_d`` (:func:`.dag.diff` with the system's memo,
+        so dL*/dq' is the one (1.26) took); ``sp.diff`` gives the same expressions (the unit
+        tests compare the two routes)."""
+        d = differentiate or self._d
         x = self.independent
         qs = [self.system.q[c] for c in self._nus]
         qps = [self._qp[c] for c in self._nus]

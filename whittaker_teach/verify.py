@@ -147,7 +147,7 @@ def _exact_ways(lhs, rhs):
 SCREEN_TOLERANCE = 1e-8
 _SCREEN_VALUES = {}
 _SCREEN_ATOMS = {}
-_SCREEN_MEMO_LIMIT = 50_000
+_MEMO_LIMIT = 50_000           # entries kept by the screen's and the numeric memos
 _SCREEN_FUNCTIONS = {"exp": cmath.exp, "log": cmath.log}    # what expand rewrites: kept
 
 
@@ -221,7 +221,7 @@ def expand_may_vanish(diff):
     >>> expand_may_vanish(a/(a + b) + b/(a + b) - 1), expand_may_vanish(sp.tan(t)**2 + 1 - 1/sp.cos(t)**2)
     (False, False)
     """
-    if len(_SCREEN_VALUES) > _SCREEN_MEMO_LIMIT:
+    if len(_SCREEN_VALUES) > _MEMO_LIMIT:
         _SCREEN_VALUES.clear()
     try:
         v, m = _screen(diff)
@@ -430,7 +430,7 @@ def _numeric(lhs, rhs, sample, points, seed):
     try:
         return _residuals(lhs, rhs, pts, points)
     finally:
-        if not _SHARED or len(_IDS) > _SCREEN_MEMO_LIMIT:
+        if not _SHARED or len(_IDS) > _MEMO_LIMIT:
             _forget_canonical()
 
 
