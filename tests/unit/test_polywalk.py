@@ -1,0 +1,102 @@
+"""The one-walk polynomial forms (polywalk) give what SymPy's own functions give."""
+
+import pytest
+import sympy as sp
+
+import whittaker_teach as wt
+from whittaker_teach import polywalk, rewrite
+from whittaker_teach.polywalk import NotPolynomial
+
+a, b, c, t = sp.symbols("a b c theta")
+m = sp.Symbol("m", positive=True)
+A = 2 * c - a**2 * t**2                 # the sledge's energy factor 2(h - V)
+B = b * t**2 + m * sp.tan(t)**2 + m
+
+
+def _same_fraction(mine, expr):
+    """``mine`` is ``cancel``'s numerator and denominator, up to their common sign."""
+    num, den = sp.fraction(sp.cancel(expr))
+    return mine in ((num, den), (-num, -den))
+
+
+@pytest.mark.parametrize("expr", [
+    2 * a**2 * b + 4 * a * b + 2 * b,
+    -a * b + a,
+    a / 2 + b / 3,
+    sp.tan(t)**2 * a + a,
+    -3 * a,
+    a**2 - b**2,
+    sp.Rational(-1, 2) * a * b - a / 2,
+    (a + b)**3 * (a - b) * m,
+    sp.cos(a - b) * m + sp.cos(a - b) * b,
+])
+def test_factor_is_sympys(expr):
+    assert polywalk.factor(expr) == sp.factor(expr)
+
+
+@pytest.mark.parametrize("expr", [a / (a + b), sp.sqrt(a + b) * a, 0.5 * a, sp.I * a,
+                                  a**c, sp.pi * a])
+def test_factor_leaves_what_it_does_not_treat(expr):
+    with pytest.raises(NotPolynomial):
+        polywalk.factor(expr)
+
+
+def test_factor_of_a_number_is_the_number():
+    assert polywalk.factor(sp.Integer(6)) == 6
+
+
+@pytest.mark.parametrize("expr", [
+    a / (a + b) + b / (a + b),
+    (a**2 - b**2) / (a - b),
+    1 / (2 * a) - 1 / (2 * b),
+    a / sp.sqrt(A) / sp.sqrt(A) + a * t**2 / A,          # the root multiplies out
+    sp.sqrt(A) * (sp.tan(t)**2 + 1) / sp.sqrt(A),
+    (m * sp.tan(t)**2 + m) * A**sp.Rational(3, 2) / (A * sp.sqrt(A) * m),
+])
+def test_fraction_is_cancels(expr):
+    assert _same_fraction(polywalk.fraction(expr), expr)
+
+
+def test_fraction_of_the_sledges_acceleration_is_the_old_route():
+    """q'' of the sledge, solved from (1.26): the one-walk form is exactly the form of
+    ``together`` followed by a polynomial gcd (the route it replaces)."""
+    red = wt.examples.sledge().reduce("x", +1)
+    (qpp,) = red._accelerations().values()
+    num, den = sp.fraction(sp.together(qpp))
+    ring, (p, q) = sp.polys.rings.sring([num, den])
+    assert polywalk.fraction(qpp) == polywalk.lowest_terms(p, q)
+    assert all(x.exp.is_Integer for x in polywalk.fraction(qpp)[1].atoms(sp.Pow))
+
+
+@pytest.mark.parametrize("expr", [
+    sp.sqrt(a + b) / sp.sqrt(a**2 + b),          # a root left below
+    a / (a - a),
+])
+def test_fraction_leaves_what_it_cannot_reduce(expr):
+    with pytest.raises((NotPolynomial, ZeroDivisionError)):
+        polywalk.fraction(expr)
+
+
+def test_a_root_inside_a_roots_base_is_one_more_generator():
+    e = sp.sqrt(sp.sqrt(a) + b) / (a - b) + 1 / (b - a)
+    num, den = polywalk.fraction(e)
+    assert sp.expand(num * (a - b) - den * (sp.sqrt(sp.sqrt(a) + b) - 1)) == 0
+
+
+def test_cancelled_falls_back_to_sympy_where_the_walk_stops():
+    """A root left in the denominator: ``rewrite._cancelled`` takes SymPy's route and the
+    result is still the same rational function."""
+    e = sp.sqrt(a + b) / sp.sqrt(a**2 + b) + a
+    num, den = rewrite._cancelled(e)
+    assert sp.simplify(num / den - e) == 0
+
+
+def test_count_ops_is_at_most_two_per_node():
+    """``rewrite._ops_above`` skips ``count_ops`` for a tree of at most limit / 3 nodes,
+    on the grounds that ``count_ops`` counts at most two operations per node."""
+    red = wt.examples.sledge().reduce("x", +1)
+    exprs = list(red._eqs) + list(red._accelerations().values()) + [
+        sp.Rational(-1, 3), -a / b, -a - b, a**-2 * b**sp.Rational(-3, 2) / 7, -1 / (a + b)]
+    for e in exprs:
+        nodes = sum(1 for _ in sp.preorder_traversal(e))
+        assert sp.count_ops(e) <= 2 * nodes
