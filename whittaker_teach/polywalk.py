@@ -60,14 +60,26 @@ def _generators(expr):
 class _Walk:
     """Numerator and factored denominator of each node, as polynomials of ``ring``."""
 
-    def __init__(self, ring, index, roots):
-        self.ring, self.index, self.roots, self.memo = ring, index, roots, {}
+    def __init__(self, ring, order, roots):
+        self.ring, self.order, self.roots, self.memo = ring, order, roots, {}
+        self.index = {g: i for i, g in enumerate(order)}
+
+    def as_expr(self, p):
+        return p.as_expr(*self.order)
 
     def __call__(self, e):
         r = self.memo.get(e)
         if r is None:
             r = self.memo[e] = self._node(e)
         return r
+
+    def product(self, factors, k=1):
+        """The product of f**(j*k) over ``factors`` {f: j}."""
+        out = self.ring.one
+        for f, j in factors.items():
+            if j:
+                out *= f**(j * k)
+        return out
 
     def _node(self, e):
         R = self.ring
@@ -93,7 +105,7 @@ class _Walk:
                 return n**k, {f: j * k for f, j in d.items()}
             if not n:
                 raise NotPolynomial(e)
-            return _product(R, d, -k), {n: -k}
+            return self.product(d, -k), {n: -k}
         r = R.gens[self.index[sp.Pow(b, sp.Rational(1, x.q))]]
         return (r**x.p, {}) if x.p > 0 else (R.one, {r: -x.p})
 
@@ -110,17 +122,8 @@ class _Walk:
         num = R.zero
         for key, n in groups.items():
             d = dict(key)
-            num += n * _product(R, {f: k - d.get(f, 0) for f, k in common.items()})
+            num += n * self.product({f: k - d.get(f, 0) for f, k in common.items()})
         return num, common
-
-
-def _product(ring, factors, k=1):
-    """The product of f**(j*k) over ``factors`` {f: j}, in ``ring``."""
-    out = ring.one
-    for f, j in factors.items():
-        if j:
-            out *= f**(j * k)
-    return out
 
 
 def _reduce_roots(p, walk):
@@ -144,6 +147,9 @@ def _reduce_roots(p, walk):
     return p
 
 
+_SPLIT = {}
+
+
 def _split_roots(roots):
     """{b**(p/q): the same root of b with its common factor taken out} where SymPy then
     splits it, as ``together`` does: sqrt(m*y'**2 + m) = sqrt(m)*sqrt(y'**2 + 1) for m
@@ -151,11 +157,27 @@ def _split_roots(roots):
     out = {}
     for r, (b, q) in roots.items():
         if b.is_Add:
-            s = sp.factor_terms(b)
+            s = _SPLIT.get(b)
+            if s is None:
+                if len(_SPLIT) >= 4096:
+                    _SPLIT.clear()
+                s = _SPLIT[b] = sp.factor_terms(b)
             if s != b and not sp.Pow(s, r.exp).is_Pow:
                 out.update({b**sp.Rational(p, q): sp.Pow(s, sp.Rational(p, q))
                             for p in range(-3 * q, 3 * q + 1) if p % q})
     return out
+
+
+def _walked(expr):
+    """The walk of ``expr`` (its roots split as ``together`` splits them) and the
+    numerator and factored denominator it gives."""
+    gens, roots = _generators(expr)
+    split = _split_roots(roots)
+    if split:
+        expr = expr.xreplace(split)
+        gens, roots = _generators(expr)
+    walk = _walker(list(gens) + list(roots), roots)
+    return walk, walk(expr)
 
 
 def fraction(expr):
@@ -167,52 +189,45 @@ def fraction(expr):
     >>> fraction(x/sp.sqrt(x + y)/sp.sqrt(x + y) + y/(x + y))
     (1, 1)
     """
-    gens, roots = _generators(expr)
-    split = _split_roots(roots)
-    if split:
-        expr = expr.xreplace(split)
-        gens, roots = _generators(expr)
-    walk = _walker(list(gens) + list(roots), roots)
-    num, den = walk(expr)
-    R = walk.ring
-    p, q = _reduce_roots(num, walk), _reduce_roots(_product(R, den), walk)
+    walk, (num, den) = _walked(expr)
+    R, roots = walk.ring, walk.roots
+    p, q = _reduce_roots(num, walk), _reduce_roots(walk.product(den), walk)
     if not q:
         raise NotPolynomial(expr)
     cp, p = p.clear_denoms()
     cq, q = q.clear_denoms()
-    Z = _ring(R.symbols, "ZZ")
+    Z = _ring(R.ngens, "ZZ")
     p, q = (p * cq).set_ring(Z), (q * cp).set_ring(Z)
     g = p.gcd(q)
     if any(m[walk.index[r]] for r in roots for m in q.exquo(g).itermonoms()):
         raise NotPolynomial(expr)   # a root left below: ``together`` may cancel it, with
                                    # a relation (r**2 = b) that the gcd does not see
-    return lowest_terms(p, q, g)
+    return lowest_terms(p, q, g, walk.order)
 
 
-def lowest_terms(p, q, g=None):
-    """p/q as expressions, their gcd ``g`` removed, the denominator's leading
-    coefficient > 0."""
+def lowest_terms(p, q, g=None, gens=()):
+    """p/q as expressions in ``gens`` (default: the ring's own symbols), their gcd ``g``
+    removed, the denominator's leading coefficient > 0."""
     g = p.gcd(q) if g is None else g
     p, q = p.exquo(g), q.exquo(g)
     if q.LC < 0:
         p, q = -p, -q
-    return p.as_expr(), q.as_expr()
+    return p.as_expr(*gens), q.as_expr(*gens)
 
 
 _RINGS = {}
 
 
-def _ring(order, domain):
-    """A ``PolyRing`` over ``domain`` ("QQ" or "ZZ"), remembered: SymPy builds each new
-    ring's monomial code with ``exec``, about a millisecond."""
+def _ring(n, domain):
+    """A ``PolyRing`` in ``n`` placeholder generators over ``domain`` ("QQ" or "ZZ"),
+    remembered: SymPy builds each new ring's monomial code with ``exec`` (about a
+    millisecond), and a ring (and the smaller rings a gcd drops to) depends only on the
+    number of generators.  The walk maps its own generators to the placeholders."""
     from sympy.polys.domains import QQ, ZZ
     from sympy.polys.rings import PolyRing
-    key = (tuple(order), domain)
-    R = _RINGS.get(key)
+    R = _RINGS.get((n, domain))
     if R is None:
-        if len(_RINGS) >= 256:
-            _RINGS.clear()
-        R = _RINGS[key] = PolyRing(order, QQ if domain == "QQ" else ZZ)
+        R = _RINGS[n, domain] = PolyRing(sp.symbols(f"_w0:{n}"), QQ if domain == "QQ" else ZZ)
     return R
 
 
@@ -221,7 +236,7 @@ def _walker(gens, roots):
     ``sring`` and ``factor`` choose, so that signs are normalized as theirs are)."""
     from sympy.polys.polyutils import _sort_gens
     order = _sort_gens(gens)
-    return _Walk(_ring(order, "QQ"), {g: i for i, g in enumerate(order)}, roots)
+    return _Walk(_ring(len(order), "QQ"), order, roots)
 
 
 def factor(expr):
@@ -246,6 +261,6 @@ def factor(expr):
     if den:
         raise NotPolynomial(expr)
     c, p = num.clear_denoms()
-    coeff, factors = p.set_ring(_ring(walk.ring.symbols, "ZZ")).factor_list()
+    coeff, factors = p.set_ring(_ring(walk.ring.ngens, "ZZ")).factor_list()
     return _keep_coeff(sp.Rational(int(coeff), int(c)),
-                       sp.Mul(*[f.as_expr()**k for f, k in factors]))
+                       sp.Mul(*[walk.as_expr(f)**k for f, k in factors]))
