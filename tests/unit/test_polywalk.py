@@ -100,3 +100,22 @@ def test_count_ops_is_at_most_two_per_node():
     for e in exprs:
         nodes = sum(1 for _ in sp.preorder_traversal(e))
         assert sp.count_ops(e) <= 2 * nodes
+
+
+@pytest.mark.parametrize("expr", [
+    -a**2 * b * (sp.tan(t)**2 + 1),               # monomial content, then degree one in b?
+    2 * c * sp.tan(t) - a**2 * t**2 * sp.tan(t) - a**2 * t,
+    6 * a * b + 4 * a,
+    a**2 - b**2,                                  # no generator of degree one: factor_list
+    (a * b + 1) * (a + b),
+    -7 * a**3,
+    -4 * a * b,
+])
+def test_the_factor_list_shortcut_is_factor_list(expr):
+    """Where the shortcut answers (degree one in a generator whose coefficient is one
+    term), it answers what ``factor_list`` answers."""
+    from sympy.polys.domains import ZZ
+    from sympy.polys.rings import sring
+    ring, p = sring(expr, domain=ZZ)
+    (c1, f1), (c2, f2) = polywalk._factor_list(p), p.factor_list()
+    assert c1 == c2 and dict(f1) == dict(f2)
