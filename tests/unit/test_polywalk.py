@@ -118,4 +118,4 @@ def test_the_factor_list_shortcut_is_factor_list(expr):
     from sympy.polys.rings import sring
     ring, p = sring(expr, domain=ZZ)
     (c1, f1), (c2, f2) = polywalk._factor_list(p), p.factor_list()
-    assert c1 == c2 and dict(f1) == dict(f2)
+    assert c1 == c2 and {f.as_expr(): k for f, k in f1} == {f.as_expr(): k for f, k in f2}
