@@ -231,11 +231,26 @@ def _ring(n, domain):
     return R
 
 
+_GEN_KEYS = {}
+
+
+def _gen_key(g):
+    """The key by which SymPy's ``_sort_gens`` (default options) sorts ``g``, remembered:
+    it prints each generator, about 0.1 ms for tan(theta)."""
+    k = _GEN_KEYS.get(g)
+    if k is None:
+        from sympy.polys.polyutils import _gens_order, _max_order, _re_gen
+        if len(_GEN_KEYS) >= 4096:
+            _GEN_KEYS.clear()
+        name, index = _re_gen.match(str(g)).groups()
+        k = _GEN_KEYS[g] = (_gens_order.get(name, _max_order), name, int(index) if index else 0)
+    return k
+
+
 def _walker(gens, roots):
     """A :class:`_Walk` over the rationals with ``gens`` in SymPy's own order (the order
     ``sring`` and ``factor`` choose, so that signs are normalized as theirs are)."""
-    from sympy.polys.polyutils import _sort_gens
-    order = _sort_gens(gens)
+    order = sorted(gens, key=_gen_key)
     return _Walk(_ring(len(order), "QQ"), order, roots)
 
 

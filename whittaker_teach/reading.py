@@ -78,9 +78,11 @@ def powers_combined(expr):
     """
     def merge(m):
         groups, order = {}, []
+        sums = sum(isinstance(f.as_base_exp()[0], sp.Add) for f in m.args)
         for f in sp.Mul.make_args(m):
             b, e = f.as_base_exp()
-            small = (isinstance(b, sp.Add) and tree_size(b, BASE_EXPAND_LIMIT) <= BASE_EXPAND_LIMIT
+            small = (sums > 1 and isinstance(b, sp.Add)    # one sum has nothing to merge with
+                     and tree_size(b, BASE_EXPAND_LIMIT) <= BASE_EXPAND_LIMIT
                      and expanded_terms(b, BASE_EXPAND_LIMIT) <= BASE_EXPAND_LIMIT)
             key = sp.expand(b) if small else b
             if key not in groups:

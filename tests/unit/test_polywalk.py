@@ -119,3 +119,10 @@ def test_the_factor_list_shortcut_is_factor_list(expr):
     ring, p = sring(expr, domain=ZZ)
     (c1, f1), (c2, f2) = polywalk._factor_list(p), p.factor_list()
     assert c1 == c2 and {f.as_expr(): k for f, k in f1} == {f.as_expr(): k for f, k in f2}
+
+
+def test_generators_are_sorted_as_sympy_sorts_them():
+    from sympy.polys.polyutils import _sort_gens
+    x1, x10, x2, z = sp.symbols("x1 x10 x2 z")
+    gens = [sp.tan(t), z, x10, sp.sqrt(a + b), x2, m, x1, sp.cos(a - b), t, a, c, b]
+    assert polywalk._walker(gens, {}).order == list(_sort_gens(gens))

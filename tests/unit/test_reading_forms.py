@@ -100,6 +100,18 @@ def test_powers_combined_leaves_a_base_holding_a_high_power_unexpanded(monkeypat
     out = R.powers_combined(sp.sqrt(A) * sp.Mul(A, 1, evaluate=False) * a)
     assert out == a * A**sp.Rational(3, 2)
     assert A not in expanded
-    small = a + y
-    R.powers_combined(sp.sqrt(small) * sp.Mul(small, 1, evaluate=False) * x)
+    small, z = x * (a + 1) + y, sp.Symbol("z")
+    out = R.powers_combined(sp.sqrt(small) * (a * x + x + y) * z)
     assert small in expanded                  # small bases are still compared expanded
+    assert out in (z * small**sp.Rational(3, 2), z * (a * x + x + y)**sp.Rational(3, 2))
+
+
+def test_powers_combined_expands_nothing_when_no_two_factors_are_sums(monkeypatch):
+    """With at most one sum among the factors of a product there is nothing to merge
+    (SymPy's Mul has merged equal bases as written): no ``expand``."""
+    a, x, y = sp.symbols("a x y")
+    expanded, real = [], sp.expand
+    monkeypatch.setattr(sp, "expand", lambda e, *args, **kw: expanded.append(e) or real(e, *args, **kw))
+    e = sp.sqrt(x * (a + 1) + y) * sp.tan(a)**2 * x / (a - y)**0 * sp.sqrt(a)
+    assert R.powers_combined(e) == e
+    assert not expanded

@@ -41,5 +41,8 @@ def section3(direction=+1, reduction=None):
     """
     from ._section3 import section3_steps
     from ..steps import Derivation
+    from ..verify import shared_points
     red = reduction if reduction is not None else sledge().reduce("x", direction)
-    return Derivation("Mei (1983), section 3: the sledge", section3_steps(red))
+    with shared_points():       # the checks share their random points and values there
+        steps = section3_steps(red)
+    return Derivation("Mei (1983), section 3: the sledge", steps)
