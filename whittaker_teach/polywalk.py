@@ -242,7 +242,7 @@ def _gen_key(g):
         from sympy.polys.polyutils import _gens_order, _max_order, _re_gen
         if len(_GEN_KEYS) >= 4096:
             _GEN_KEYS.clear()
-        name, index = _re_gen.match(str(g)).groups()
+        name, index = _re_gen.match(g.name if type(g) is sp.Symbol else str(g)).groups()
         k = _GEN_KEYS[g] = (_gens_order.get(name, _max_order), name, int(index) if index else 0)
     return k
 

@@ -124,5 +124,6 @@ def test_the_factor_list_shortcut_is_factor_list(expr):
 def test_generators_are_sorted_as_sympy_sorts_them():
     from sympy.polys.polyutils import _sort_gens
     x1, x10, x2, z = sp.symbols("x1 x10 x2 z")
-    gens = [sp.tan(t), z, x10, sp.sqrt(a + b), x2, m, x1, sp.cos(a - b), t, a, c, b]
+    gens = [sp.tan(t), z, x10, sp.sqrt(a + b), x2, m, x1, sp.cos(a - b), t, a, c, b,
+            sp.Dummy("a"), sp.Function("q")(t)]
     assert polywalk._walker(gens, {}).order == list(_sort_gens(gens))
