@@ -241,11 +241,12 @@ def cleared_forms(red):
     if "cleared" not in red._cache:
         out = []
         acc = red._tidy_accelerations()
+        parts = red._cache["acc_parts"]          # N and D of q''_nu = N / D as shown
         for c in red._nus:
             a = red._qpp[c]
-            if _ops_above(acc[a], RATIONAL_OPS_LIMIT):
+            if parts[a] is None or _ops_above(acc[a], RATIONAL_OPS_LIMIT):
                 continue
-            num, den = sp.fraction(sp.together(acc[a]))
+            num, den = parts[a]
             out.append(powers_combined(collected(den * a - num, [a] + _primes(red))))
         red._cache["cleared"] = out
     return list(red._cache["cleared"])

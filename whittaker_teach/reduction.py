@@ -40,7 +40,7 @@ from .dag import diff, substitute, tree_size
 from .errors import ModelError, ModelTypeError, guarded
 from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
                       velocity_form, whittaker_forms)
-from .rewrite import collected, rational
+from .rewrite import collected, rational_parts
 from .steps import Derivation, Report, Step, eq, notation, partial
 from .verify import DPS, check_identity, check_zero, evaluate, shared_points
 
@@ -219,7 +219,8 @@ class Reduction:
             qpp = [self._qpp[c] for c in self._nus]
             eqs = sp.Matrix(self._eqs)
             M = sp.Matrix([[self._d(e, a) for a in qpp] for e in eqs])
-            rest = eqs.xreplace({a: 0 for a in qpp})
+            zero, memo = {a: sp.S.Zero for a in qpp}, {}
+            rest = sp.Matrix([substitute(e, zero, memo) for e in eqs])
             self.system._require_regular(M, "d(1.26)/d(q''_nu)", self._sample)
             if M.is_diagonal():
                 sol = [-rest[i] / M[i, i] for i in range(len(qpp))]
@@ -229,10 +230,14 @@ class Reduction:
         return self._cache["acc"]
 
     def _tidy_accelerations(self):
-        """q''_nu as one fraction each, to read (``rewrite.rational``)."""
+        """q''_nu as one fraction each, to read (``rewrite.rational``); the numerator and
+        denominator of each are kept (``_cache["acc_parts"]``, None where q''_nu is too
+        large for one fraction) for the cleared form (3.10)."""
         if "acc_tidy" not in self._cache:
             qp = list(self._qp.values())
-            self._cache["acc_tidy"] = {a: rational(x, qp)
+            parts = {a: rational_parts(x, qp) for a, x in self._accelerations().items()}
+            self._cache["acc_parts"] = parts
+            self._cache["acc_tidy"] = {a: x if parts[a] is None else parts[a][0] / parts[a][1]
                                        for a, x in self._accelerations().items()}
         return self._cache["acc_tidy"]
 

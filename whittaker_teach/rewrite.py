@@ -13,7 +13,7 @@ import sympy as sp
 from . import polywalk
 from .dag import expanded_terms
 
-__all__ = ["collected", "rational", "pythagoras", "factored"]
+__all__ = ["collected", "rational", "rational_parts", "pythagoras", "factored"]
 
 #: Above this operation count, a rewrite is skipped and the expression kept as built.
 OPS_LIMIT = 2000
@@ -119,10 +119,18 @@ def rational(expr, symbols=()):
 
     Expressions larger than ``RATIONAL_OPS_LIMIT`` operations are returned as they
     are: the rewrite is for reading, and results are correct either way."""
+    parts = rational_parts(expr, symbols)
+    return expr if parts is None else parts[0] / parts[1]
+
+
+def rational_parts(expr, symbols=()):
+    """The numerator and the denominator of :func:`rational`'s form (the numerator
+    collected on ``symbols``, the denominator factored), or None above
+    ``RATIONAL_OPS_LIMIT`` operations."""
     if _ops_above(expr, RATIONAL_OPS_LIMIT):
-        return expr
+        return None
     num, den = _cancelled(expr)
-    return collected(num, symbols) / pythagoras(factored(den))
+    return collected(num, symbols), pythagoras(factored(den))
 
 
 def _cancelled(expr):
