@@ -20,7 +20,7 @@ True
 
 import sympy as sp
 
-__all__ = ["tree_size", "substitute", "max_depth", "expanded_terms", "diff"]
+__all__ = ["tree_size", "substitute", "zeroed", "max_depth", "expanded_terms", "diff"]
 
 
 def tree_size(expr, limit):
@@ -66,6 +66,45 @@ def substitute(expr, mapping, memo=None):
     ``in`` and ``[]``: a dict, or an object that replaces every node of a kind."""
     memo = {} if memo is None else memo
     return _walk(sp.sympify(expr), mapping, memo)
+
+
+def zeroed(expr, symbols, memo=None):
+    """``expr`` with every symbol of ``symbols`` set to 0 (the part of an equation free
+    of the accelerations), rebuilding only what changes: a product with a factor that
+    becomes 0 is 0 at once, and a sum that only loses terms keeps its other terms as
+    they stand (dropping terms leaves SymPy's sorted, collected sum canonical), where
+    ``substitute`` would rebuild each through SymPy's ``flatten`` and its assumption
+    queries.  For expressions whose subexpressions are finite (0 times a pole is not 0).
+
+    >>> a, b, x = sp.symbols("a b x")
+    >>> e = a*x + b*(1 + x*a) + sp.sin(b)
+    >>> zeroed(e, [x]) == e.xreplace({x: 0})
+    True
+    """
+    zero = frozenset(symbols)
+    memo = {} if memo is None else memo
+
+    def walk(e):
+        r = memo.get(e)
+        if r is None:
+            r = memo[e] = _zeroed(e, zero, walk)
+        return r
+    return walk(sp.sympify(expr))
+
+
+def _zeroed(e, zero, walk):
+    if e in zero:
+        return sp.S.Zero
+    if not e.args:
+        return e
+    args = [walk(a) for a in e.args]
+    if all(a is b for a, b in zip(args, e.args)):
+        return e
+    if e.is_Mul and any(a is sp.S.Zero for a in args):
+        return sp.S.Zero
+    if e.is_Add and all(a is b or a is sp.S.Zero for a, b in zip(args, e.args)):
+        return sp.Add._from_args([a for a in args if a is not sp.S.Zero])
+    return e.func(*args)
 
 
 def _walk(e, mapping, memo):

@@ -150,13 +150,32 @@ def _reduce_roots(p, walk):
 _SPLIT = {}
 
 
+def _has_content(b):
+    """Whether ``factor_terms`` can take anything out of every term of the sum ``b``: a
+    numeric content other than 1, or a base common to all terms (only then can the root
+    of ``b`` split)."""
+    from math import gcd, lcm
+    coeffs = [t.as_coeff_Mul()[0] for t in b.args]
+    if not all(c.is_Rational for c in coeffs):
+        return True
+    if gcd(*[abs(int(c.p)) for c in coeffs]) != 1 or lcm(*[int(c.q) for c in coeffs]) != 1:
+        return True
+    common = None
+    for t in b.args:
+        bases = {f.as_base_exp()[0] for f in sp.Mul.make_args(t) if not f.is_Number}
+        common = bases if common is None else common & bases
+        if not common:
+            return False
+    return True
+
+
 def _split_roots(roots):
     """{b**(p/q): the same root of b with its common factor taken out} where SymPy then
     splits it, as ``together`` does: sqrt(m*y'**2 + m) = sqrt(m)*sqrt(y'**2 + 1) for m
     positive, so that sqrt(m) can cancel."""
     out = {}
     for r, (b, q) in roots.items():
-        if b.is_Add:
+        if b.is_Add and _has_content(b):
             s = _SPLIT.get(b)
             if s is None:
                 if len(_SPLIT) >= 4096:

@@ -36,7 +36,7 @@ import mpmath
 import sympy as sp
 
 from .coordinates import name as _name, sign_assumptions as _assume
-from .dag import diff, substitute, tree_size
+from .dag import diff, substitute, tree_size, zeroed
 from .errors import ModelError, ModelTypeError, guarded
 from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
                       velocity_form, whittaker_forms)
@@ -219,8 +219,8 @@ class Reduction:
             qpp = [self._qpp[c] for c in self._nus]
             eqs = sp.Matrix(self._eqs)
             M = sp.Matrix([[self._d(e, a) for a in qpp] for e in eqs])
-            zero, memo = {a: sp.S.Zero for a in qpp}, {}
-            rest = sp.Matrix([substitute(e, zero, memo) for e in eqs])
+            memo = {}
+            rest = sp.Matrix([zeroed(e, qpp, memo) for e in eqs])
             self.system._require_regular(M, "d(1.26)/d(q''_nu)", self._sample)
             if M.is_diagonal():
                 sol = [-rest[i] / M[i, i] for i in range(len(qpp))]

@@ -45,7 +45,7 @@ import sympy as sp
 from sympy.core.function import AppliedUndef
 
 from .coordinates import T, name, sign_assumptions
-from .dag import diff, max_depth, substitute
+from .dag import diff, max_depth, substitute, zeroed
 from .errors import ModelError, ModelTypeError, guarded
 from .reduction import Reduction
 from .rewrite import collected, rational
@@ -302,7 +302,8 @@ class ChaplyginSystem:
             qdd = [self.qdd[c] for c in self._sig]
             eqs = sp.Matrix(self._eom())
             M = sp.Matrix([[self._d(e, a) for a in qdd] for e in eqs])
-            rest = eqs.xreplace({a: 0 for a in qdd})
+            memo = {}
+            rest = sp.Matrix([zeroed(e, qdd, memo) for e in eqs])
             self._require_regular(M, "the mass matrix d(1.4)/d(qddot_sigma)", self._sample_time)
             if M.is_diagonal():
                 sol = [-rest[i] / M[i, i] for i in range(len(qdd))]

@@ -56,3 +56,35 @@ def test_diff_products_with_zero_derivatives_match_sympy():
               sp.Mul(sp.zoo, x, y, evaluate=False), x**y * sp.sin(x)):
         for s_ in (x, y):
             assert dag.diff(e, s_) == e.diff(s_)
+
+
+def test_zeroed_is_substitute_on_every_example_and_family():
+    """``zeroed`` (the part of (1.4) and (1.26) free of the accelerations) builds the
+    very expression ``xreplace`` builds: same tree, same hash."""
+    import whittaker_teach as wt
+    from whittaker_teach.bench import family
+    from whittaker_teach.dag import zeroed
+    cases = []
+    for ex in wt.examples.catalogue():
+        red = ex.reduce()
+        S = red.system
+        cases += [(red._eqs, [red._qpp[c] for c in red._nus]),
+                  (S._eom(), [S.qdd[c] for c in S._sig])]
+    for hol in (False, True):
+        L, coords, dep = family(4, hol)
+        red = wt.ChaplyginSystem(L, coords, dep).reduce(coords[0], 1)
+        cases.append((red._eqs, [red._qpp[c] for c in red._nus]))
+    for eqs, syms in cases:
+        memo = {}
+        for e in eqs:
+            z, x = zeroed(e, syms, memo), e.xreplace({a: 0 for a in syms})
+            assert z == x and sp.srepr(z) == sp.srepr(x)
+
+
+def test_zeroed_drops_terms_and_keeps_the_sum_canonical():
+    from whittaker_teach.dag import zeroed
+    a, b, c, x = sp.symbols("a b c x")
+    e = 3 + a * x + b * (c + x * a) + sp.sin(a) * x**2 + b**2
+    z = zeroed(e, [x])
+    assert z == 3 + b * c + b**2 and z == sp.Add(*z.args)
+    assert zeroed(x * a, [x]) == 0 and zeroed(x, [x]) == 0 and zeroed(a + b, [x]) == a + b

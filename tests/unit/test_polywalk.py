@@ -127,3 +127,12 @@ def test_generators_are_sorted_as_sympy_sorts_them():
     gens = [sp.tan(t), z, x10, sp.sqrt(a + b), x2, m, x1, sp.cos(a - b), t, a, c, b,
             sp.Dummy("a"), sp.Function("q")(t)]
     assert polywalk._walker(gens, {}).order == list(_sort_gens(gens))
+
+
+@pytest.mark.parametrize("base", [m * b**2 + m, A, a / 2 + b / 2, 2 * a + 4 * b, a + b,
+                                  a * (b + 1) + a * c, sp.sqrt(a) * b + sp.sqrt(a)])
+def test_content_screen_misses_no_split(base):
+    """``factor_terms`` is skipped only where it could not split the root of the base."""
+    from whittaker_teach.polywalk import _has_content
+    if not _has_content(base):
+        assert sp.sqrt(sp.factor_terms(base)).is_Pow
