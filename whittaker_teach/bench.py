@@ -9,13 +9,17 @@ system's equations (the constraints as non-holonomic constraints), and the
 peak memory (tracemalloc) of each side.  Each figure comes from a fresh
 process forked after the imports (a new interpreter each where there is no
 ``os.fork``); memory from a separate traced process (tracing slows the run).
+Each time is the fastest of ``--repeat`` alternating runs of each side (the
+slower runs of a shared machine measure its other load), and the growth per
+added coordinate is fitted to them.
 
 ``python -m whittaker_teach bench derivation``: in fresh processes, the time
 to build the sledge, derive every step of the paper and verify them all,
 against the time sympy.physics.mechanics' LagrangesMethod takes to form and
 solve the sledge's time-domain equations (with a Lagrange multiplier), and
 the time of ``import whittaker_teach``.  Each figure is the median over
-``--repeat`` fresh processes.
+``--repeat`` fresh processes, and the compute-only times of the fastest run are
+printed beside them.
 """
 
 import json
@@ -259,17 +263,19 @@ class _Measurer:
 
 
 def scale_rows(ns, holonomic, memory=True, repeat=1):
-    """One dict per n: times (s, the median of ``repeat`` runs of each side, alternating),
-    ratio (reduce + verify) / peer, peak memory (MiB)."""
+    """One dict per n: times (s, the fastest of ``repeat`` runs of each side, alternating:
+    on a shared machine the slower runs measure the other load, not the code), ratio
+    (reduce + verify) / peer, peak memory (MiB)."""
     rows = []
     measure = _Measurer()
     try:
         for n in ns:
             runs = [(measure("run_ours", n, holonomic), measure("run_peer", n, holonomic))
                     for _ in range(repeat)]
-            ours = {k: statistics.median(o[k] for o, _ in runs) for k in ("reduce", "verify")}
+            fastest = min((o for o, _ in runs), key=lambda o: o["reduce"] + o["verify"])
+            ours = {k: fastest[k] for k in ("reduce", "verify")}
             ours["ok"] = all(o["ok"] for o, _ in runs)
-            peer = {"peer": statistics.median(p["peer"] for _, p in runs)}
+            peer = {"peer": min(p["peer"] for _, p in runs)}
             row = {"n": n, **ours, **peer}
             row["ratio"] = (row["reduce"] + row["verify"]) / row["peer"]
             if memory:
@@ -294,13 +300,28 @@ def scale_table(rows, title):
     return "\n".join(lines)
 
 
+def growth(rows, key):
+    """Growth per added coordinate: exp of the least-squares slope of log(time) on n,
+    ``key`` a function of a row."""
+    import math
+    ns = [r["n"] for r in rows]
+    if len(ns) < 2:
+        return float("nan")
+    ys = [math.log(key(r)) for r in rows]
+    mn, my = sum(ns) / len(ns), sum(ys) / len(ys)
+    slope = (sum((n - mn) * (y - my) for n, y in zip(ns, ys))
+             / sum((n - mn) ** 2 for n in ns))
+    return math.exp(slope)
+
+
 def scale_main(args):
     lo, _, hi = args.n.partition("..")
     ns = range(int(lo), int(hi or lo) + 1)
     repeat = max(1, getattr(args, "repeat", 1))
     print("CPU seconds. reduce: build, reduce, (1.26) and q'' solved; verify: every check;\n"
           "peer: LagrangesMethod forming and solving; ratio = (reduce + verify) / peer;\n"
-          f"medians of {repeat} runs, each in a fresh process (forked after the imports);\n"
+          f"the fastest of {repeat} alternating runs of each side, each in a fresh process\n"
+          "(forked after the imports);\n"
           "peak memory (MiB, after the imports) by tracemalloc")
     ok = True
     kinds = {"both": (False, True), "nonholonomic": (False,), "holonomic": (True,)}
@@ -309,5 +330,9 @@ def scale_main(args):
         title = ("holonomic family" if holonomic else
                  "non-holonomic family (g = (n - 1) // 2 constraints)")
         print(scale_table(rows, title), flush=True)
+        if len(rows) > 1:
+            print(f"growth per added coordinate (least squares on log time): ours "
+                  f"x{growth(rows, lambda r: r['reduce'] + r['verify']):.2f}, peer "
+                  f"x{growth(rows, lambda r: r['peer']):.2f}", flush=True)
         ok = ok and all(r["ok"] for r in rows)
     return 0 if ok else 1

@@ -50,3 +50,8 @@ def test_without_fork_each_measurement_is_a_new_interpreter(monkeypatch):
     assert measure.server is None
     assert measure("run_peer", 2, True)["peer"] > 0
     assert measure("run_peer", 2, True, traced=True)["peak"] > 0
+
+
+def test_growth_is_the_fitted_factor_per_coordinate():
+    rows = [{"n": n, "t": 0.1 * 1.5 ** n} for n in range(2, 9)]
+    assert abs(bench.growth(rows, lambda r: r["t"]) - 1.5) < 1e-12
