@@ -36,12 +36,11 @@ def _ops_above(expr, limit):
     operation for each).  Also True when
     ``expand`` would swell it beyond that (a power of a sum such as (1 + x)**40).
 
-    ``count_ops`` itself (which builds a negated copy of each negative product) is
-    called only when the tree has more than limit / 3 nodes: it counts at most two
-    operations per node (a -1/3 is NEG and DIV; a sum or product of k terms, k - 1 joins
-    and at most a NEG and a DIV), so a smaller tree cannot be above the limit.  On the
-    examples and the scale families that spares 840 of its 894 calls."""
-    n, least, stack = 0, 0, [expr]
+    ``count_ops`` itself (which builds a negated copy of each negative product and a
+    fraction of each quotient) is called only when an upper bound counted in the same
+    walk is above the limit (:func:`_ops_bound`).  On the examples and the scale
+    families that spares all but a few of its calls."""
+    n, least, most, stack = 0, 0, 0, [expr]
     while stack and n <= 4 * limit + 1:
         e = stack.pop()
         n += 1
@@ -49,10 +48,35 @@ def _ops_above(expr, limit):
             least += len(e.args) - 1       # count_ops counts one ADD or SUB per joined term,
         elif e.is_Pow or e.is_Function:
             least += 1                     # one POW, DIV or EXP per power, one per function
+        most += _ops_bound(e)
         stack.extend(e.args)
     if n > 4 * limit + 1 or least > limit or expanded_terms(expr, SWELL_LIMIT) > SWELL_LIMIT:
         return True
-    return 3 * n > limit and sp.count_ops(expr) > limit
+    return most > limit and sp.count_ops(expr) > limit
+
+
+def _ops_bound(e):
+    """At most the operations ``count_ops`` counts at the node ``e``: for a sum of k
+    terms, k - 1 joins and a NEG if all are negative; for a product of k factors, its
+    joins above and below the fraction bar (k - 1 at most), a NEG and a DIV; one per
+    power or function; a NEG and a DIV per rational number; one for any other atom
+    (E is EXP)."""
+    if e.is_Add:
+        return len(e.args) - 1 + all(_negative(a) for a in e.args)
+    if e.is_Mul:
+        den = any((f.is_Pow and f.exp.is_Number and f.exp < 0) or (f.is_Rational and f.q != 1)
+                  for f in e.args)
+        return len(e.args) - 1 + _negative(e) + den
+    if e.is_Pow or e.is_Function:
+        return 1
+    if e.is_Rational:
+        return (e.p < 0) + (e.q != 1)
+    return 0 if e.is_Symbol else 1
+
+
+def _negative(e):
+    c = e.as_coeff_Mul()[0]
+    return bool(c.is_Number and c < 0)
 
 
 _FACTORED = {}

@@ -91,15 +91,29 @@ def test_cancelled_falls_back_to_sympy_where_the_walk_stops():
     assert sp.simplify(num / den - e) == 0
 
 
-def test_count_ops_is_at_most_two_per_node():
-    """``rewrite._ops_above`` skips ``count_ops`` for a tree of at most limit / 3 nodes,
-    on the grounds that ``count_ops`` counts at most two operations per node."""
+def test_the_ops_bound_is_never_below_count_ops():
+    """``rewrite._ops_above`` skips ``count_ops`` when an upper bound counted in its walk
+    is within the limit: the bound is never below ``count_ops`` (the sledge's results
+    and 2000 random expressions), and ``_ops_above`` answers as ``count_ops`` would."""
+    import random
     red = wt.examples.sledge().reduce("x", +1)
     exprs = list(red._eqs) + list(red._accelerations().values()) + [
         sp.Rational(-1, 3), -a / b, -a - b, a**-2 * b**sp.Rational(-3, 2) / 7, -1 / (a + b)]
+    rng = random.Random(1)
+    atoms = [a, b, c, sp.Rational(-1, 3), sp.Integer(2), sp.sqrt(a), sp.tan(b), -a, 1 / (a + b)]
+    for _ in range(2000):
+        e = rng.choice(atoms)
+        for _ in range(rng.randint(1, 6)):
+            x, op = rng.choice(atoms), rng.choice("+-*/p")
+            e = {"+": lambda: e + x, "-": lambda: e - x, "*": lambda: e * x, "/": lambda: e / x,
+                 "p": lambda: e ** rng.choice([2, -1, sp.Rational(1, 2), -2])}[op]()
+        exprs.append(e)
     for e in exprs:
-        nodes = sum(1 for _ in sp.preorder_traversal(e))
-        assert sp.count_ops(e) <= 2 * nodes
+        ops = sp.count_ops(e)
+        for limit in (ops - 1, ops, 2 * ops + 5):
+            assert rewrite._ops_above(e, limit) == (ops > limit) or rewrite.expanded_terms(
+                e, rewrite.SWELL_LIMIT) > rewrite.SWELL_LIMIT
+
 
 
 @pytest.mark.parametrize("expr", [
