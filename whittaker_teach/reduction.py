@@ -307,8 +307,9 @@ class Reduction:
         E = self.system._energy()
         return evaluate(E, {s: mpmath.mpf(pt[s]) for s in E.free_symbols})
 
-    def _sample(self, rng):
-        """A random point on the energy surface: h is the energy of the sampled motion."""
+    def _sample(self, rng, energy=True):
+        """A random point on the energy surface: h is the energy of the sampled motion
+        (not computed with ``energy=False``, for a caller that sets h itself)."""
         S = self.system
         pt = S._sample_time(rng)
         v = self.direction * rng.uniform(0.3, 1.5)
@@ -319,7 +320,8 @@ class Reduction:
                 pt[self._qp[c]] = rng.uniform(-1, 1)
                 pt[self._qpp[c]] = rng.uniform(-1, 1)
                 pt[S.qd[c]] = mpmath.mpf(v) * mpmath.mpf(pt[self._qp[c]])
-            pt[self.h] = self._energy_at(pt)
+            if energy:
+                pt[self.h] = self._energy_at(pt)
         return pt
 
     # ----- steps ----------------------------------------------------------

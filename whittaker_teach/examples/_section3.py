@@ -44,7 +44,7 @@ def section3_steps(red):
 
     def smp_c(rng):
         """A point with 2h - m C^2 - k^2 theta^2 > 0, for the first integral (3.11)."""
-        pt = red._sample(rng)
+        pt = red._sample(rng, energy=False)          # h is set here
         with mpmath.workdps(DPS):
             pt[C] = mpmath.mpf(rng.uniform(0.3, 1.5))
             pt[h] = (pt[m] * pt[C]**2 + pt[k]**2 * pt[th]**2) / 2 + rng.uniform(0.1, 1.0)
