@@ -98,20 +98,19 @@ def main(args):
     (ours, ours_c, ours_f), (core, core_c, core_f), (peer, peer_c, peer_f), (imp, _, _) = (
         _interleaved([OURS, CORE, PEER, IMPORT], n))
     print(f"fresh-process medians over {n} runs (Python {sys.version.split()[0]})")
-    print(f"  whittaker_teach: sledge, every step (1.1)-(2.4) and (3.1)-(3.15) derived "
-          f"and verified: {ours:7.3f} s")
-    print(f"  whittaker_teach: the general derivation (1.1)-(2.4) only, verified: "
-          f"{core:7.3f} s")
-    print(f"  sympy.physics.mechanics LagrangesMethod: sledge time-domain equations "
-          f"formed and solved: {peer:7.3f} s")
+    print(f"  whittaker_teach, the sledge: every step (1.1)-(2.4), (3.1)-(3.15) derived "
+          f"and verified: {ours:6.3f} s")
+    print(f"  whittaker_teach, the sledge: the general derivation (1.1)-(2.4) only, "
+          f"verified: {core:6.3f} s")
+    print(f"  sympy.physics.mechanics LagrangesMethod, the sledge's equations formed and "
+          f"solved: {peer:6.3f} s")
     print(f"  ratio (ours / peer): {ours / peer:.2f} with section 3, {core / peer:.2f} without "
           "(target <= 2)")
-    print(f"  compute only (after the imports): ours {ours_c:.3f} s with section 3, "
-          f"{core_c:.3f} s without; peer {peer_c:.3f} s; ratio {ours_c / peer_c:.2f} / "
-          f"{core_c / peer_c:.2f} (target <= 1.5)")
-    print(f"  compute only, fastest of the {n} runs: ours {ours_f:.3f} s with section 3, "
-          f"{core_f:.3f} s without; peer {peer_f:.3f} s; ratio {ours_f / peer_f:.2f} / "
-          f"{core_f / peer_f:.2f}")
+    print("  compute only (after the imports), s: with section 3, without, peer; ratios "
+          "(target <= 1.5)")
+    for what, a, b, c in (("median of the runs", ours_c, core_c, peer_c),
+                          ("fastest run", ours_f, core_f, peer_f)):
+        print(f"    {what:<20} {a:6.3f}  {b:6.3f}  {c:6.3f}   {a / c:.2f} / {b / c:.2f}")
     print(f"  import whittaker_teach: {imp:.3f} s  (target < 0.5 s)")
     return 0
 
