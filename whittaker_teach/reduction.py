@@ -221,11 +221,7 @@ class Reduction:
             M = sp.Matrix([[self._d(e, a) for a in qpp] for e in eqs])
             memo = {}
             rest = sp.Matrix([zeroed(e, qpp, memo) for e in eqs])
-            self.system._require_regular(M, "d(1.26)/d(q''_nu)", self._sample)
-            if M.is_diagonal():
-                sol = [-rest[i] / M[i, i] for i in range(len(qpp))]
-            else:
-                sol = list(M.LUsolve(-rest))
+            sol = self.system._solve(M, rest, "d(1.26)/d(q''_nu)", self._sample)
             self._cache["acc"] = dict(zip(qpp, sol))
         return self._cache["acc"]
 

@@ -45,7 +45,7 @@ import sympy as sp
 from sympy.core.function import AppliedUndef
 
 from .coordinates import T, name, sign_assumptions
-from .dag import diff, max_depth, substitute, zeroed
+from .dag import diff, max_depth, substitute, tree_size, zeroed
 from .errors import ModelError, ModelTypeError, guarded
 from .reduction import Reduction
 from .rewrite import collected, rational
@@ -109,6 +109,24 @@ def _check_coordinates(coordinates):
         raise ModelError(f"duplicate coordinates: {', '.join(dup)} appear more than once "
                          "in the list of coordinates q_s (1.1)")
     return coords
+
+
+#: a matrix of more nodes than this is solved with its LU pivots chosen by value
+PIVOT_BY_VALUE_NODES = 2000
+
+
+def _zero_at(point):
+    """An ``iszerofunc`` for SymPy's LU: True for 0 and for an entry whose value at
+    ``point`` (a memo of values, 40 digits) is 0 to half the digits, False otherwise."""
+    def iszero(x):
+        if x.is_Number:
+            return x == 0
+        try:
+            with mpmath.workdps(DPS):
+                return not abs(evaluate(x, point)) > mpmath.mpf(10) ** (-DPS // 2)
+        except (ZeroDivisionError, ValueError, OverflowError, TypeError):
+            return True              # not a usable pivot at this point
+    return iszero
 
 
 class ChaplyginSystem:
@@ -304,11 +322,8 @@ class ChaplyginSystem:
             M = sp.Matrix([[self._d(e, a) for a in qdd] for e in eqs])
             memo = {}
             rest = sp.Matrix([zeroed(e, qdd, memo) for e in eqs])
-            self._require_regular(M, "the mass matrix d(1.4)/d(qddot_sigma)", self._sample_time)
-            if M.is_diagonal():
-                sol = [-rest[i] / M[i, i] for i in range(len(qdd))]
-            else:
-                sol = list(M.LUsolve(-rest))
+            sol = self._solve(M, rest, "the mass matrix d(1.4)/d(qddot_sigma)",
+                              self._sample_time)
             self._cache["acc"] = dict(zip(qdd, sol))
         return self._cache["acc"]
 
@@ -326,7 +341,24 @@ class ChaplyginSystem:
         return {self.to_public(k): self.to_public(v)
                 for k, v in self._tidy_accelerations().items()}
 
+    def _solve(self, M, rest, what, sample):
+        """The solution x of M x + rest = 0, once ``M`` is shown regular at a sampled
+        point.  A large matrix (more than ``PIVOT_BY_VALUE_NODES`` nodes) takes as LU
+        pivot the first entry whose value at that point is not 0: an entry nonzero at a
+        point is not identically zero, and the point's matrix is regular, so a pivot is
+        always found.  SymPy's default asks ``is_zero`` of every candidate, which on a
+        large entry is a long walk of assumption queries (a seventh of the holonomic
+        family's reduce at n = 8); small matrices keep SymPy's own choice."""
+        point = self._require_regular(M, what, sample)
+        if M.is_diagonal():
+            return [-rest[i] / M[i, i] for i in range(M.rows)]
+        if sum(tree_size(e, PIVOT_BY_VALUE_NODES) for e in M) <= PIVOT_BY_VALUE_NODES:
+            return list(M.LUsolve(-rest))
+        return list(M.LUsolve(-rest, iszerofunc=_zero_at(point)))
+
     def _require_regular(self, M, what, sample):
+        """The values at a sampled point where ``M`` is regular (det far from 0), or
+        ModelError (a singular kinetic energy, 1.4)."""
         rng = random.Random(7)
         rows = M.tolist()
         with mpmath.workdps(DPS):
@@ -342,7 +374,7 @@ class ChaplyginSystem:
                     raise ModelError(f"{what} cannot be evaluated numerically to check that "
                                      f"it is regular (1.4): {err}") from err
                 if abs(d) > mpmath.mpf(10) ** (-DPS // 2):
-                    return
+                    return memo
         raise ModelError(f"singular kinetic energy: {what} is singular, so the accelerations "
                          "cannot be solved (1.4); is the kinetic energy positive definite in "
                          "the independent velocities?")
