@@ -157,8 +157,9 @@ class Reduction:
         self._to_internal = {v: k for k, v in self._to_public.items()}
 
     def to_public(self, expr):
-        """Rewrite internal symbols (theta, thetaprime) as functions of q_eps (theta(x), ...)."""
-        return substitute(expr, self._to_public)
+        """Rewrite internal symbols (theta, thetaprime) as functions of q_eps (theta(x), ...)
+        (one memo for the reduction: the public results share most of their pieces)."""
+        return substitute(expr, self._to_public, self._cache.setdefault("public", {}))
 
     # ----- the operations of the paper ------------------------------------
     def _sub15(self, expr):

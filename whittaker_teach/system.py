@@ -253,8 +253,9 @@ class ChaplyginSystem:
                                      "in the independent velocities only (1.1)")
 
     def to_public(self, expr):
-        """Rewrite an expression of the internal symbols (x, xdot, xddot) in dynamicsymbols."""
-        return substitute(expr, self._to_public)
+        """Rewrite an expression of the internal symbols (x, xdot, xddot) in dynamicsymbols
+        (one memo for the system: the public results share most of their pieces)."""
+        return substitute(expr, self._to_public, self._cache.setdefault("public", {}))
 
     # ----- properties -----------------------------------------------------
     def _d(self, f, z):
