@@ -23,6 +23,7 @@ printed beside them.
 """
 
 import json
+import math
 import os
 import statistics
 import subprocess
@@ -302,7 +303,6 @@ def scale_table(rows, title):
 def growth(rows, key):
     """Growth per added coordinate: exp of the least-squares slope of log(time) on n,
     ``key`` a function of a row."""
-    import math
     ns = [r["n"] for r in rows]
     if len(ns) < 2:
         return float("nan")

@@ -217,18 +217,21 @@ def fraction(expr):
     cq, q = q.clear_denoms()
     Z = _ring(R.ngens, "ZZ")
     p, q = (p * cq).set_ring(Z), (q * cp).set_ring(Z)
-    g = p.gcd(q)
-    if any(m[walk.index[r]] for r in roots for m in q.exquo(g).itermonoms()):
+    _, p, q = p.cofactors(q)            # the gcd, and both sides divided by it
+    if any(m[walk.index[r]] for r in roots for m in q.itermonoms()):
         raise NotPolynomial(expr)   # a root left below: ``together`` may cancel it, with
                                    # a relation (r**2 = b) that the gcd does not see
-    return lowest_terms(p, q, g, walk.order)
+    return _signed(p, q, walk.order)
 
 
-def lowest_terms(p, q, g=None, gens=()):
-    """p/q as expressions in ``gens`` (default: the ring's own symbols), their gcd ``g``
+def lowest_terms(p, q, gens=()):
+    """p/q as expressions in ``gens`` (default: the ring's own symbols), their gcd
     removed, the denominator's leading coefficient > 0."""
-    g = p.gcd(q) if g is None else g
-    p, q = p.exquo(g), q.exquo(g)
+    _, p, q = p.cofactors(q)
+    return _signed(p, q, gens)
+
+
+def _signed(p, q, gens):
     if q.LC < 0:
         p, q = -p, -q
     return p.as_expr(*gens), q.as_expr(*gens)
