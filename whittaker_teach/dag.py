@@ -20,7 +20,7 @@ True
 
 import sympy as sp
 
-__all__ = ["tree_size", "substitute", "zeroed", "max_depth", "expanded_terms", "diff"]
+__all__ = ["tree_size", "substitute", "zeroed", "max_depth", "expanded_terms", "diff", "power"]
 
 
 def tree_size(expr, limit):
@@ -58,6 +58,30 @@ def max_depth(expr, limit):
         seen.add((e, d))
         stack.extend((a, d + 1) for a in e.args)
     return deepest
+
+
+def power(base, exp):
+    """``base**exp`` as SymPy builds it, without the assumption queries that cannot
+    change the result.
+
+    For a sum with symbols and a rational exponent other than 0 and 1, SymPy's
+    ``Add._eval_power`` returns nothing (the power stays as built) unless the sum is
+    ``a + I*b`` with an infinite term; to find that out it asks ``is_infinite`` of both
+    terms of every two-term sum, a deep query on a term such as ``m*tan(theta)**2``.
+    Such a power is built here unevaluated, which is the object evaluation gives.
+
+    >>> x, y = sp.symbols("x y")
+    >>> sp.srepr(power(x*sp.tan(y)**2 + x, -1)) == sp.srepr(1/(x*sp.tan(y)**2 + x))
+    True
+    >>> power(sp.Integer(4), sp.S.Half)
+    2
+    """
+    base, exp = sp.sympify(base), sp.sympify(exp)
+    if (base.is_Add and exp.is_Rational and exp not in (0, 1) and not base.is_number
+            and not (len(base.args) == 2
+                     and any(sp.I in sp.Mul.make_args(a) for a in base.args))):
+        return sp.Pow(base, exp, evaluate=False)
+    return sp.Pow(base, exp)
 
 
 def substitute(expr, mapping, memo=None):

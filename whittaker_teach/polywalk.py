@@ -22,7 +22,7 @@ caller uses SymPy's own functions.
 
 import sympy as sp
 
-__all__ = ["NotPolynomial", "fraction", "factor", "lowest_terms"]
+__all__ = ["NotPolynomial", "fraction", "factor", "groups", "lowest_terms", "vanishes"]
 
 
 class NotPolynomial(Exception):
@@ -30,8 +30,9 @@ class NotPolynomial(Exception):
     (the caller falls back to SymPy's own functions)."""
 
 
-def _generators(expr):
-    """({generator: None}, {root generator: (base, q)}) of ``expr``."""
+def _generators(expr, number_roots=False):
+    """({generator: None}, {root generator: (base, q)}) of ``expr``; a root of a
+    positive rational number (sqrt(2)) is a generator only if ``number_roots``."""
     gens, roots, seen, stack = {}, {}, set(), [expr]
     while stack:
         e = stack.pop()
@@ -46,7 +47,8 @@ def _generators(expr):
             stack.extend(e.args)
         elif e.is_Pow and e.exp.is_Integer:
             stack.append(e.base)
-        elif e.is_Pow and e.exp.is_Rational and not e.base.is_number:
+        elif e.is_Pow and e.exp.is_Rational and (
+                not e.base.is_number or number_roots and e.base.is_Rational and e.base > 0):
             r = sp.Pow(e.base, sp.Rational(1, e.exp.q))
             if not (r.is_Pow and r.base == e.base and r.exp.q == e.exp.q):
                 raise NotPolynomial(e)
@@ -128,23 +130,25 @@ class _Walk:
 
 def _reduce_roots(p, walk):
     """``p`` with every r**k, k >= q, of a root generator r = b**(1/q) rewritten as
-    b**(k // q) r**(k % q)."""
+    b**(k // q) r**(k % q); repeated while a rewrite leaves a power of a root that
+    occurs in another root's base (at most once per root)."""
     R = walk.ring
-    for r, (b, q) in walk.roots.items():
-        i = walk.index[r]
-        bn, bd = walk(b)
-        if bd:
-            raise NotPolynomial(b)
-        if any(m[i] >= q for m in p.itermonoms()):
+    for _ in range(len(walk.roots) + 1):
+        high = [(r, b, q) for r, (b, q) in walk.roots.items()
+                if any(m[walk.index[r]] >= q for m in p.itermonoms())]
+        if not high:
+            return p
+        for r, b, q in high:
+            i = walk.index[r]
+            bn, bd = walk(b)
+            if bd:
+                raise NotPolynomial(b)
             parts = {}
             for m, c in p.iterterms():
                 j, k = divmod(m[i], q)
                 parts.setdefault(j, {})[m[:i] + (k,) + m[i + 1:]] = c
             p = sum((R.from_dict(t) * bn**j for j, t in parts.items()), R.zero)
-    return p
-    if any(m[walk.index[r]] >= q for r, (b, q) in walk.roots.items() for m in p.itermonoms()):
-        raise NotPolynomial(p)             # a root inside another root's base
-    return p
+    raise NotPolynomial(p)                 # roots nested in a cycle: not reduced
 
 
 _SPLIT = {}
@@ -187,16 +191,32 @@ def _split_roots(roots):
     return out
 
 
-def _walked(expr):
+def _walked(expr, number_roots=False, merge_roots=False):
     """The walk of ``expr`` (its roots split as ``together`` splits them) and the
-    numerator and factored denominator it gives."""
-    gens, roots = _generators(expr)
+    numerator and factored denominator it gives; with ``merge_roots``, roots of equal
+    degree whose bases are the same rational function
+    (sqrt(m*(t**2 + 1)) and sqrt(m*t**2 + m)) are one generator."""
+    gens, roots = _generators(expr, number_roots)
     split = _split_roots(roots)
     if split:
         expr = expr.xreplace(split)
-        gens, roots = _generators(expr)
+        gens, roots = _generators(expr, number_roots)
     walk = _walker(list(gens) + list(roots), roots)
+    if merge_roots and len(roots) > 1:
+        _merge_roots(walk)
     return walk, walk(expr)
+
+
+def _merge_roots(walk):
+    seen = []                                 # (q, numerator, denominator, generator)
+    for r, (b, q) in walk.roots.items():
+        n, d = walk(b)
+        d = walk.product(d)
+        same = next((g for q1, n1, d1, g in seen if q1 == q and n * d1 == n1 * d), None)
+        if same is None:
+            seen.append((q, n, d, walk(r)))
+        else:
+            walk.memo[r] = same
 
 
 def fraction(expr):
@@ -222,6 +242,32 @@ def fraction(expr):
         raise NotPolynomial(expr)   # a root left below: ``together`` may cancel it, with
                                    # a relation (r**2 = b) that the gcd does not see
     return _signed(p, q, walk.order)
+
+
+def vanishes(expr):
+    """Whether ``expr`` is shown to be 0 by rational arithmetic alone: brought over one
+    common denominator in a polynomial ring whose generators are its symbols, functions
+    and roots, each root r = b**(1/q) reduced by r**q = b, the numerator is the zero
+    polynomial and no factor of the denominator is.  The generators are treated as
+    independent, so ``False`` means "not shown" (sin(x)**2 + cos(x)**2 - 1 is not),
+    never "shown nonzero".  This decides most of a derivation's identities at less than
+    half the cost of ``expand`` (which multiplies out every term through SymPy's Mul).
+
+    >>> x, y = sp.symbols("x y", positive=True)
+    >>> vanishes(x/(x + y) + y/(x + y) - 1)
+    True
+    >>> vanishes(sp.sqrt(x + y)**3 - (x + y)*sp.sqrt(x + y) + sp.sqrt(2)**2 - 2)
+    True
+    >>> vanishes(sp.sin(x)**2 + sp.cos(x)**2 - 1)
+    False
+    """
+    try:
+        walk, (num, den) = _walked(expr, number_roots=True, merge_roots=True)
+        if _reduce_roots(num, walk):
+            return False
+        return all(_reduce_roots(f, walk) for f in den)
+    except NotPolynomial:
+        return False
 
 
 def lowest_terms(p, q, gens=()):
@@ -301,6 +347,59 @@ def factor(expr):
     coeff, factors = _factor_list(p.set_ring(_ring(walk.ring.ngens, "ZZ")))
     return _keep_coeff(sp.Rational(int(coeff), int(c)),
                        sp.Mul(*[walk.as_expr(f)**k for f, k in factors]))
+
+
+def groups(expr, symbols):
+    """{monomial in ``symbols``: its coefficient} of the expanded polynomial ``expr``:
+    the terms of ``expand(expr)`` grouped as ``as_independent(*symbols)`` splits them,
+    by one walk into a polynomial ring (no ``expand``, which multiplies out through
+    SymPy's own Mul).  ``NotPolynomial`` unless ``expr`` is a polynomial with rational
+    coefficients in symbols and functions that ``expand`` keeps as they are (where it
+    would open a function or its arguments, a root or a denominator, the caller uses
+    ``expand``).
+
+    >>> x, y, t = sp.symbols("x y theta")
+    >>> g = groups((x + y*sp.tan(t))**2, [x])
+    >>> g[x**2], g[x], g[1]
+    (1, 2*y*tan(theta), y**2*tan(theta)**2)
+    """
+    gens, roots = _generators(expr)
+    if roots or not all(_kept_by_expand(g) for g in gens if g.is_Function):
+        raise NotPolynomial(expr)
+    walk = _walker(list(gens), {})
+    num, den = walk(expr)
+    if den:
+        raise NotPolynomial(expr)
+    symbols = set(symbols)
+    mono_at = [i for i, g in enumerate(walk.order) if g in symbols or g.free_symbols & symbols]
+    parts = {}
+    for m, c in num.iterterms():
+        key = tuple(m[i] for i in mono_at)
+        rest = list(m)
+        for i in mono_at:
+            rest[i] = 0
+        parts.setdefault(key, {})[tuple(rest)] = c
+    R = walk.ring
+    return {sp.Mul(*[walk.order[i]**k for i, k in zip(mono_at, key)]):
+            R.from_dict(terms).as_expr(*walk.order) for key, terms in parts.items()}
+
+
+_TRIG = frozenset(("sin", "cos", "tan", "cot", "sec", "csc", "sinh", "cosh", "tanh", "coth"))
+
+
+def _kept_by_expand(f):
+    """Whether ``expand`` leaves the function ``f`` as it stands: its arguments are atoms,
+    or, for a trigonometric or hyperbolic function (which ``expand`` does not open by
+    default), sums of products of atoms and their positive integer powers."""
+    if all(a.is_Atom for a in f.args):
+        return True
+    return type(f).__name__ in _TRIG and all(
+        all(_monomial(t) for t in sp.Add.make_args(a)) for a in f.args)
+
+
+def _monomial(t):
+    return all(x.is_Atom or x.is_Pow and x.base.is_Atom and x.exp.is_Integer and x.exp > 0
+               for x in sp.Mul.make_args(t))
 
 
 def _factor_list(p):

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from .dag import expanded_terms, substitute, tree_size
+from .dag import expanded_terms, power, substitute, tree_size
 from .rewrite import RATIONAL_OPS_LIMIT, _ops_above, collected, factored, pythagoras
 from .verify import check_identity
 
@@ -189,7 +189,7 @@ def velocity_form(red):
     A2, _, A0 = red._A
     num = _factored(2 * (red.h + A0))
     den = _tidy(red, sp.expand(2 * A2), _primes(red))
-    return red.direction * sp.sqrt(num) / sp.sqrt(den)
+    return red.direction * power(num, sp.S.Half) / power(den, sp.S.Half)
 
 
 def lstar_form(red):

@@ -36,7 +36,7 @@ import mpmath
 import sympy as sp
 
 from .coordinates import name as _name, sign_assumptions as _assume
-from .dag import diff, substitute, tree_size, zeroed
+from .dag import diff, power, substitute, tree_size, zeroed
 from .errors import ModelError, ModelTypeError, guarded
 from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
                       velocity_form, whittaker_forms)
@@ -182,6 +182,12 @@ class Reduction:
             out += d(f, self._qp[c]) * self._qpp[c] + d(f, S.q[c]) * self._qp[c]
         return out
 
+    def _chain(self, a, f, z):
+        """a * df/dz, built only when df/dz is not 0 (a product with a factor 0 asks
+        whether every other factor is finite, a deep query on a large sum)."""
+        df = self._d(f, z)
+        return sp.S.Zero if df == 0 else a * df
+
     def _d(self, f, z):
         """df/dz, as ``f.diff(z)`` builds it, each shared subexpression differentiated once
         (``dag.diff``, with one memo per system)."""
@@ -198,8 +204,8 @@ class Reduction:
                              "along q_eps)")
         s = self.direction
         self._A = (A2, A1, A0)
-        self._vstar = s * sp.sqrt(twoK) / sp.sqrt(twoA2)                          # (1.12)
-        self._Lstar = s * sp.sqrt(twoK) * sp.sqrt(twoA2) + A1                     # (1.16)
+        self._vstar = s * power(twoK, sp.S.Half) / power(twoA2, sp.S.Half)          # (1.12)
+        self._Lstar = s * power(twoK, sp.S.Half) * power(twoA2, sp.S.Half) + A1     # (1.16)
         self._Pstar = [self._star(self._sub15(P)) for P in S._dLdqdep_tilde()]
         self._omega = [self._sub15(phi) for phi in S._phi.values()]               # (1.22)
         self._qdstar = [self._d(w, v) for w in self._omega]                           # (1.23)
@@ -394,8 +400,9 @@ class Reduction:
                                       f"{what} + " r"\dot q_\varepsilon\,\Omega_{\dot "
                                       rf"q_\varepsilon {what}}} - \partial\Omega/\partial {what}"
                                       " = 0$ at (1.12)",
-                                      [self._star(v * Ovv * self._d(vs, z) + v * self._d(Omv, z)
-                                                  - self._d(Om, z)) for z in vars_], smp)))
+                                      [self._star(self._chain(v * Ovv, vs, z)
+                                                  + v * self._d(Omv, z) - self._d(Om, z))
+                                       for z in vars_], smp)))
         lform = lstar_form(self)
         st.append(Step("1.16", r"the reduced Lagrangian $L^* = \partial\Omega/\partial\dot "
                        r"q_\varepsilon$ at (1.12)", [eq(LSTAR, lform)], check_reading(
@@ -411,7 +418,7 @@ class Reduction:
                 r"q_\varepsilon}\,\partial\dot q_\varepsilon/\partial " f"{what} + "
                 rf"\Omega_{{\dot q_\varepsilon {what}}}$",
                 [self._d(Ls, z) for z in vars_],
-                [self._star(Ovv * self._d(vs, z) + self._d(Omv, z)) for z in vars_], smp)))
+                [self._star(self._chain(Ovv, vs, z) + self._d(Omv, z)) for z in vars_], smp)))
         st.append(Step("1.19", "from (1.14) and (1.17)",
                        [eq(d("L^*", qp[c]), self._d(Ls, qp[c])) for c in nus], check_identity(
             "1.19", r"$\partial L^*/\partial q'_\nu = (1/\dot q_\varepsilon)\,\partial\Omega/"

@@ -109,17 +109,22 @@ def collected(expr, symbols):
     accelerations) and ``factor`` each coefficient: the form a student would write.
 
     Unlike ``sympy.collect`` it does not recurse into function arguments, so its
-    cost is one ``expand`` and one ``factor`` per monomial.
+    cost is one ``expand`` and one ``factor`` per monomial; for a polynomial in symbols
+    and functions of atoms, the grouped terms come from one walk into a polynomial ring
+    (:func:`.polywalk.groups`) instead of ``expand``.
     """
     if _ops_above(expr, OPS_LIMIT):
         return expr
-    groups = {}
-    for term in sp.Add.make_args(sp.expand(expr)):
-        coeff, mono = term.as_independent(*symbols, as_Add=False)
-        groups.setdefault(mono, []).append(coeff)
+    try:
+        groups = polywalk.groups(expr, symbols)
+    except polywalk.NotPolynomial:
+        groups = {}
+        for term in sp.Add.make_args(sp.expand(expr)):
+            coeff, mono = term.as_independent(*symbols, as_Add=False)
+            groups.setdefault(mono, []).append(coeff)
+        groups = {mono: sp.Add(*coeffs) for mono, coeffs in groups.items()}
     out = []
-    for mono, coeffs in groups.items():
-        c = sp.Add(*coeffs)
+    for mono, c in groups.items():
         if not _ops_above(c, FACTOR_LIMIT):
             c = factored(c)
         out.append(c * mono)

@@ -45,7 +45,7 @@ import sympy as sp
 from sympy.core.function import AppliedUndef
 
 from .coordinates import T, name, sign_assumptions
-from .dag import diff, max_depth, substitute, tree_size, zeroed
+from .dag import diff, max_depth, power, substitute, tree_size, zeroed
 from .errors import ModelError, ModelTypeError, guarded
 from .reduction import Reduction
 from .rewrite import collected, rational
@@ -352,7 +352,7 @@ class ChaplyginSystem:
         family's reduce at n = 8); small matrices keep SymPy's own choice."""
         point = self._require_regular(M, what, sample)
         if M.is_diagonal():
-            return [-rest[i] / M[i, i] for i in range(M.rows)]
+            return [-rest[i] * power(M[i, i], -1) for i in range(M.rows)]
         if sum(tree_size(e, PIVOT_BY_VALUE_NODES) for e in M) <= PIVOT_BY_VALUE_NODES:
             return list(M.LUsolve(-rest))
         return list(M.LUsolve(-rest, iszerofunc=_zero_at(point)))

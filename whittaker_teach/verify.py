@@ -24,9 +24,10 @@ import mpmath
 import sympy as sp
 
 from .dag import expanded_terms, tree_size
+from .polywalk import vanishes
 
-__all__ = ["Check", "check_identity", "check_zero", "evaluate", "shared_points", "DPS",
-           "TOLERANCE"]
+__all__ = ["Check", "check_identity", "check_zero", "evaluate", "largest_value",
+           "shared_points", "DPS", "TOLERANCE"]
 
 #: Working precision (decimal digits) of the numeric checks.
 DPS = 40
@@ -102,6 +103,8 @@ def _exactly_zero(diff):
     if (tree_size(diff, EXACT_SIZE_LIMIT) > EXACT_SIZE_LIMIT
             or expanded_terms(diff, EXACT_TERMS_LIMIT) > EXACT_TERMS_LIMIT):
         return None
+    if vanishes(diff):
+        return "common denominator"
     if sp.expand(diff) == 0:
         return "expand"
     return None
@@ -451,6 +454,22 @@ def _residuals(lhs, rhs, pts, points):
                 worst = max(worst, float(abs(a - b) / scale))
             used += 1
     return worst, used
+
+
+def largest_value(expr, sample, points=POINTS, seed=0):
+    """The largest ``abs(expr)`` over ``points`` random admissible points (those of
+    ``sample`` and ``seed``, shared within :class:`shared_points` with the checks that
+    use them, and so their values): the evidence that a misprinted form is wrong.
+
+    >>> x = sp.Symbol("x")
+    >>> largest_value(x - 1, lambda rng: {x: 3}, points=2)
+    2.0
+    """
+    pts, worst = _points(sample, seed), 0.0
+    with mpmath.workdps(DPS):
+        for i in range(points):
+            worst = max(worst, float(abs(evaluate(expr, pts[i]))))
+    return worst
 
 
 def check_identity(label, claim, lhs, rhs, sample, *, exact=True, points=POINTS, seed=0):

@@ -12,7 +12,10 @@ def sample(rng):
 
 
 def test_exact_and_numeric():
-    c = check_identity("t", "expand", (x + 1)**2, x**2 + 2 * x + 1, sample)
+    c = check_identity("t", "polynomial", (x + 1)**2, x**2 + 2 * x + 1, sample)
+    assert c.holds and c.method == "exact" and c.detail == "common denominator"
+    # the walk takes sin(x*(x + 1)) and sin(x**2 + x) for two generators; expand does not
+    c = check_identity("t", "expand", sp.sin(x * (x + 1)), sp.sin(x**2 + x), sample)
     assert c.holds and c.method == "exact" and c.detail == "expand"
     c = check_identity("t", "trig", 1 / sp.cos(x)**2, 1 + sp.tan(x)**2, sample)
     assert c.holds and c.method == "numeric" and c.points == 6 and c.max_residual < 1e-30
