@@ -20,7 +20,8 @@ True
 
 import sympy as sp
 
-__all__ = ["tree_size", "substitute", "zeroed", "max_depth", "expanded_terms", "diff", "power"]
+__all__ = ["tree_size", "substitute", "bottom_up", "zeroed", "max_depth", "expanded_terms",
+           "diff", "power"]
 
 
 def tree_size(expr, limit):
@@ -90,6 +91,32 @@ def substitute(expr, mapping, memo=None):
     ``in`` and ``[]``: a dict, or an object that replaces every node of a kind."""
     memo = {} if memo is None else memo
     return _walk(sp.sympify(expr), mapping, memo)
+
+
+def bottom_up(expr, f):
+    """``expr.replace(lambda e: True, f)``: ``f`` applied to every node once its arguments
+    are rebuilt (``f`` returns the node or its replacement; as in ``replace``, a node is
+    rebuilt only if an argument changed, and replaced only by something unequal), each
+    distinct subexpression once (``replace`` pays again for every repetition).
+
+    >>> x, y = sp.symbols("x y")
+    >>> bottom_up(sp.sin(x*y) + x*y, lambda e: e.args[0] if e.is_Mul else e)
+    x + sin(x)
+    """
+    memo = {}
+
+    def walk(e):
+        r = memo.get(e)
+        if r is None:
+            r = e
+            if e.args:
+                args = tuple(walk(a) for a in e.args)
+                if args != e.args:
+                    r = e.func(*args)
+            v = f(r)
+            r = memo[e] = r if v is None or v == r else v
+        return r
+    return walk(sp.sympify(expr))
 
 
 def zeroed(expr, symbols, memo=None):

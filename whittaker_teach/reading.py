@@ -23,9 +23,9 @@ from __future__ import annotations
 
 import sympy as sp
 
-from .dag import expanded_terms, power, substitute, tree_size
+from .dag import bottom_up, expanded_terms, power, substitute, tree_size
 from .rewrite import RATIONAL_OPS_LIMIT, _ops_above, collected, factored, pythagoras
-from .verify import check_identity
+from .verify import check_identity, expand_may_equal
 
 __all__ = ["TotalD", "powers_combined", "tidy", "evaluate", "check_reading", "velocity_form",
            "lstar_form", "momentum_forms", "whittaker_forms", "cleared_forms", "nielsen_forms",
@@ -78,13 +78,10 @@ def powers_combined(expr):
     """
     def merge(m):
         groups, order = {}, []
-        sums = sum(isinstance(f.as_base_exp()[0], sp.Add) for f in m.args)
+        keys = _expansion_keys([f.as_base_exp()[0] for f in m.args])
         for f in sp.Mul.make_args(m):
             b, e = f.as_base_exp()
-            small = (sums > 1 and isinstance(b, sp.Add)    # one sum has nothing to merge with
-                     and tree_size(b, BASE_EXPAND_LIMIT) <= BASE_EXPAND_LIMIT
-                     and expanded_terms(b, BASE_EXPAND_LIMIT) <= BASE_EXPAND_LIMIT)
-            key = sp.expand(b) if small else b
+            key = keys.get(b, b)
             if key not in groups:
                 order.append(key)
                 groups[key] = [b, sp.S.Zero]
@@ -92,7 +89,23 @@ def powers_combined(expr):
         if len(order) == len(sp.Mul.make_args(m)):
             return m
         return sp.Mul(*[sp.Pow(groups[k][0], groups[k][1]) for k in order])
-    return expr.replace(lambda e: isinstance(e, sp.Mul), merge)
+    return bottom_up(expr, lambda e: merge(e) if isinstance(e, sp.Mul) else e)
+
+
+def _expansion_keys(bases):
+    """{base: expand(base)} for the small sums among ``bases`` that may equal another
+    one after ``expand``; a sum whose value at the screening point
+    (:func:`.verify.expand_may_equal`) differs from every other's keeps itself as key,
+    with no ``expand`` (most products, whose sums all differ)."""
+    sums = [b for b in dict.fromkeys(bases) if isinstance(b, sp.Add)
+            and tree_size(b, BASE_EXPAND_LIMIT) <= BASE_EXPAND_LIMIT
+            and expanded_terms(b, BASE_EXPAND_LIMIT) <= BASE_EXPAND_LIMIT]
+    alike = set()
+    for i, b in enumerate(sums):
+        for c in sums[i + 1:]:
+            if expand_may_equal(b, c):
+                alike.update((b, c))
+    return {b: sp.expand(b) for b in alike}
 
 
 #: a piece larger than this (tree nodes) is shown as built: no reading form of it would

@@ -233,6 +233,24 @@ def expand_may_vanish(diff):
     return not abs(v) > SCREEN_TOLERANCE * max(1.0, m)
 
 
+def expand_may_equal(a, b):
+    """False when ``expand(a) == expand(b)`` cannot hold (their values at the screening
+    point differ): the test of :func:`expand_may_vanish` for ``a - b``, without building
+    the difference.
+
+    >>> x, y = sp.symbols("x y")
+    >>> expand_may_equal((x + y)**2, x**2 + 2*x*y + y**2), expand_may_equal(x + y, x - y)
+    (True, False)
+    """
+    if len(_SCREEN_VALUES) > _MEMO_LIMIT:
+        _SCREEN_VALUES.clear()
+    try:
+        (va, ma), (vb, mb) = _screen(a), _screen(b)
+    except (ZeroDivisionError, OverflowError, ValueError, TypeError, RecursionError):
+        return True
+    return not abs(va - vb) > SCREEN_TOLERANCE * max(1.0, ma, mb)
+
+
 class Unevaluable(Exception):
     """An expression the numeric checks cannot evaluate (an unknown function)."""
 

@@ -115,3 +115,47 @@ def test_powers_combined_expands_nothing_when_no_two_factors_are_sums(monkeypatc
     e = sp.sqrt(x * (a + 1) + y) * sp.tan(a)**2 * x / (a - y)**0 * sp.sqrt(a)
     assert R.powers_combined(e) == e
     assert not expanded
+
+
+def _powers_combined_by_expand(expr):
+    """The merge as first written: every small sum of a product with two sums or more
+    expanded to compare it, through ``replace``."""
+    from whittaker_teach.dag import expanded_terms, tree_size
+
+    def merge(m):
+        groups, order = {}, []
+        sums = sum(isinstance(f.as_base_exp()[0], sp.Add) for f in m.args)
+        for f in sp.Mul.make_args(m):
+            b, e = f.as_base_exp()
+            small = (sums > 1 and isinstance(b, sp.Add) and tree_size(b, 200) <= 200
+                     and expanded_terms(b, 200) <= 200)
+            key = sp.expand(b) if small else b
+            if key not in groups:
+                order.append(key)
+                groups[key] = [b, sp.S.Zero]
+            groups[key][1] += e
+        if len(order) == len(sp.Mul.make_args(m)):
+            return m
+        return sp.Mul(*[sp.Pow(groups[k][0], groups[k][1]) for k in order])
+    return expr.replace(lambda e: isinstance(e, sp.Mul), merge)
+
+
+def test_powers_combined_expands_only_sums_that_may_be_equal():
+    """The screen (``verify.expand_may_equal``) expands only the sums of a product that
+    may be equal: on random products of powers of sums, some equal after ``expand``,
+    the result is the one of expanding them all."""
+    import random
+    a, b, t = sp.symbols("a b theta")
+    sums = [a + b, a**2 + 2 * a * b + b**2, (a + b) * (a - b), a**2 - b**2, a * (a + 2 * b),
+            a**2 + 2 * a * b, sp.tan(t)**2 + 1, 1 + sp.tan(t) * sp.tan(t), a - b]
+    exps = [sp.S.Half, -1, 2, sp.Rational(-3, 2), 3]
+    rng = random.Random(5)
+    merged = 0
+    for _ in range(150):
+        e = sp.Mul(*[sp.Pow(rng.choice(sums), rng.choice(exps), evaluate=False)
+                     for _ in range(rng.randint(2, 4))], a, evaluate=False)
+        e = e + b * e
+        mine = R.powers_combined(e)
+        assert mine == _powers_combined_by_expand(e)
+        merged += mine != e
+    assert merged > 20
