@@ -22,6 +22,8 @@ from dataclasses import dataclass, field
 
 import mpmath
 import sympy as sp
+from mpmath import libmp
+from mpmath.libmp import ComplexResult, mpf_add, mpf_mul, mpf_pow_int, mpf_sqrt
 
 from .dag import expanded_terms, tree_size
 from .polywalk import vanishes
@@ -112,9 +114,12 @@ def _exactly_zero(diff):
 
 def _exact_ways(lhs, rhs):
     """The rewrite that shows each ``lhs[i] == rhs[i]``, or None as soon as one pair is
-    not shown exactly.  Before any ``expand``, each difference is screened
-    (:func:`expand_may_vanish`): one that ``expand`` cannot make zero spares every
-    attempt; then the smallest differences are tried first."""
+    not shown exactly.  Before any ``expand``, each pair is screened
+    (:func:`expand_may_equal`, then :func:`expand_may_vanish` on the difference): one
+    that ``expand`` cannot make zero spares every attempt, and a pair screened out
+    spares building the differences; then the smallest differences are tried first."""
+    if not all(expand_may_equal(a, b) for a, b in zip(lhs, rhs)):
+        return None                    # before building any difference of large sides
     diffs = [a - b for a, b in zip(lhs, rhs)]
     if not all(expand_may_vanish(d) for d in diffs):
         return None
@@ -391,19 +396,110 @@ def _compute(e, memo):
     raise Unevaluable(f"cannot evaluate {type(e).__name__} numerically")
 
 
+# The checks' evaluation at a point works on mpmath's raw real numbers (the tuples
+# behind each mpf) with the functions of mpmath.libmp, as mpf arithmetic does inside:
+# the same operations in the same order, so the same bits, without an mpf object and
+# its type dispatch for every node.  A value that is not real (the root or logarithm of
+# a negative number) or a function without a raw form sends the pair to ``evaluate``.
+class _NotRaw(Exception):
+    """This expression is evaluated by :func:`evaluate` (mpf and mpc objects) instead."""
+
+
+_NOT_RAW = object()
+
+
+_RAW = {name: getattr(libmp, "mpf_" + name) for name in (
+    "sin", "cos", "tan", "exp", "log", "atan", "sinh", "cosh", "tanh")}
+
+
+def _raw(e, memo, prec):
+    """The raw mpf value (a tuple) of ``e`` at the point of ``memo`` (raw values, shared
+    by the checks at that point); :class:`_NotRaw` where :func:`evaluate` must do it."""
+    known = _IDS.get(id(e))
+    if known is not None and known[0] is e:
+        e = known[1]
+    v = memo.get(e)
+    if v is None:
+        v = memo[e] = _FAIL
+        try:
+            v = _raw_compute(e, memo, prec)
+        except _NotRaw:
+            memo[e] = _NOT_RAW
+            raise
+        except RecursionError:
+            raise Unevaluable("an expression too deeply nested to evaluate")
+        memo[e] = v
+    elif v is _FAIL:
+        raise ValueError("this subexpression failed to evaluate at this point")
+    elif v is _NOT_RAW:
+        raise _NotRaw
+    return v
+
+
+def _raw_compute(e, memo, prec):
+    if e.is_Add or e.is_Mul:
+        op = mpf_add if e.is_Add else mpf_mul
+        args = iter(e.args)
+        out = _raw(next(args), memo, prec)
+        for a in args:
+            out = op(out, _raw(a, memo, prec), prec, "n")
+        return out
+    if e.is_Pow:
+        b, x = _raw(e.base, memo, prec), e.exp
+        if x.is_Integer:
+            return mpf_pow_int(b, int(x), prec, "n")
+        if x.is_Rational and x.q == 2:
+            try:
+                return mpf_pow_int(mpf_sqrt(b, prec, "n"), int(x.p), prec, "n")
+            except ComplexResult:
+                raise _NotRaw
+        raise _NotRaw
+    if e.is_Symbol:
+        raise KeyError(f"no sample value for {e}")
+    if e.is_Number or e.is_NumberSymbol:
+        v = _number(e)
+        if not isinstance(v, mpmath.mpf):
+            raise _NotRaw
+        return v._mpf_
+    if isinstance(e, sp.Function) and len(e.args) == 1:
+        fn = _RAW.get(e.func.__name__)
+        if fn is not None:
+            try:
+                return fn(_raw(e.args[0], memo, prec), prec, "n")
+            except ComplexResult:
+                raise _NotRaw
+    raise _NotRaw
+
+
+def _value(e, memo, raw, prec):
+    """The value of ``e`` at a point: from raw arithmetic when it can, else
+    :func:`evaluate` (the memo ``memo`` of mpf values)."""
+    try:
+        return mpmath.mp.make_mpf(_raw(e, raw, prec))
+    except _NotRaw:
+        return evaluate(e, memo)
+
+
 class _Points:
     """Random admissible points of one sampler and seed, drawn on demand, each with
-    the memo of the values computed there (shared by every check that uses them)."""
+    the memo of the values computed there (shared by every check that uses them), as
+    mpf objects (:func:`evaluate`) and as raw mpf values (:func:`_raw`)."""
 
     def __init__(self, sample, seed):
-        self.sample, self.rng, self.points = sample, random.Random(seed), []
+        self.sample, self.rng, self.points, self.raws = sample, random.Random(seed), [], []
 
     def __getitem__(self, i):
         while len(self.points) <= i:
             pt = self.sample(self.rng)
-            self.points.append({s: mpmath.mpf(v) if isinstance(v, (int, float)) else v
-                                for s, v in pt.items()})
+            pt = {s: mpmath.mpf(v) if isinstance(v, (int, float)) else v for s, v in pt.items()}
+            self.points.append(pt)
+            self.raws.append({s: v._mpf_ if isinstance(v, mpmath.mpf) else _NOT_RAW
+                              for s, v in pt.items()})
         return self.points[i]
+
+    def raw(self, i):
+        self[i]
+        return self.raws[i]
 
 
 _SHARED = []
@@ -458,11 +554,13 @@ def _numeric(lhs, rhs, sample, points, seed):
 def _residuals(lhs, rhs, pts, points):
     worst, used, attempts = 0.0, 0, 0
     with mpmath.workdps(DPS):
+        prec = mpmath.mp.prec
         while used < points and attempts < 4 * points:
-            memo = pts[attempts]
+            memo, raw = pts[attempts], pts.raw(attempts)
             attempts += 1
             try:
-                vals = [(evaluate(a, memo), evaluate(b, memo)) for a, b in zip(lhs, rhs)]
+                vals = [(_value(a, memo, raw, prec), _value(b, memo, raw, prec))
+                        for a, b in zip(lhs, rhs)]
             except (ZeroDivisionError, ValueError, OverflowError, TypeError):
                 continue
             if not all(mpmath.isfinite(a) and mpmath.isfinite(b) for a, b in vals):

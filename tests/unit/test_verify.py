@@ -31,3 +31,27 @@ def test_unevaluable_is_not_verified():
     c = check_zero("t", "pole at every sample", 1 / (x - sp.Rational(1, 2)),
                    lambda rng: {x: 0.5}, exact=False)
     assert c.holds is None and c.status == "not verified"
+
+
+def test_raw_evaluation_gives_evaluates_bits():
+    """The checks evaluate on mpmath's raw numbers (``verify._raw``); at each point the
+    value is the very mpf ``evaluate`` gives, and what the raw path cannot do (a root of
+    a negative number, a function without a raw form) goes to ``evaluate``."""
+    import mpmath
+    from whittaker_teach import verify
+    y = sp.Symbol("y")
+    exprs = [sp.sqrt(x**2 + 1) / (x - y)**3 + sp.tan(x) * sp.exp(-y) - sp.Rational(1, 3),
+             sp.log(x + 2) * sp.atan(y) + sp.cosh(x * y)**2 + sp.pi * x,
+             sp.sqrt(y - 2) + x,                      # complex at these points
+             sp.besselj(0, x) + y]                    # no raw form
+    with mpmath.workdps(verify.DPS):
+        prec = mpmath.mp.prec
+        for k in range(5):
+            pt = {x: mpmath.mpf(0.3 + k / 7), y: mpmath.mpf(1.7 - k / 9)}
+            raw = {s: v._mpf_ for s, v in pt.items()}
+            for e in exprs:
+                mine = verify._value(e, dict(pt), raw, prec)
+                theirs = verify.evaluate(e, dict(pt))
+                assert mine == theirs and type(mine) is type(theirs)
+            for e in exprs[:2]:
+                assert verify._raw(e, raw, prec) == verify.evaluate(e, dict(pt))._mpf_
