@@ -20,7 +20,7 @@ True
 
 import sympy as sp
 
-__all__ = ["tree_size", "substitute", "bottom_up", "zeroed", "max_depth", "expanded_terms",
+__all__ = ["tree_size", "substitute", "bottom_up", "instances", "zeroed", "max_depth", "expanded_terms",
            "diff", "power"]
 
 
@@ -59,6 +59,27 @@ def max_depth(expr, limit):
         seen.add((e, d))
         stack.extend((a, d + 1) for a in e.args)
     return deepest
+
+
+def instances(expr, cls):
+    """The subexpressions of ``expr`` that are instances of ``cls``, in the order first
+    met, each distinct object visited once (``atoms`` visits a shared subtree again
+    at every occurrence).
+
+    >>> x = sp.Symbol("x")
+    >>> instances(sp.sin(x) * sp.cos(sp.sin(x)) + sp.sin(x), sp.sin)
+    [sin(x)]
+    """
+    seen, out, stack = set(), {}, [sp.sympify(expr)]
+    while stack:
+        e = stack.pop()
+        if id(e) in seen:
+            continue
+        seen.add(id(e))
+        if isinstance(e, cls):
+            out.setdefault(e, None)
+        stack.extend(reversed(e.args))
+    return list(out)
 
 
 def power(base, exp):

@@ -23,11 +23,11 @@ from __future__ import annotations
 
 import sympy as sp
 
-from .dag import bottom_up, expanded_terms, power, substitute, tree_size
+from .dag import bottom_up, expanded_terms, instances, power, substitute, tree_size
 from .rewrite import RATIONAL_OPS_LIMIT, _ops_above, collected, factored, pythagoras
 from .verify import check_identity, expand_may_equal
 
-__all__ = ["TotalD", "powers_combined", "tidy", "evaluate", "check_reading", "velocity_form",
+__all__ = ["TotalD", "powers_combined", "tidy", "evaluate", "carried_out", "check_reading", "velocity_form",
            "lstar_form", "momentum_forms", "whittaker_forms", "cleared_forms", "nielsen_forms",
            "total_derivative_form"]
 
@@ -169,15 +169,37 @@ def evaluate(expr, red, pieces=None):
     return substitute(expr, CarriedOut())        # each distinct subexpression once
 
 
+def carried_out(shown, red, pieces=None):
+    """{TotalD node: its derivative} for every :class:`TotalD` in the list ``shown``: what
+    :func:`evaluate` substitutes, as definitions for :func:`.verify.check_identity`
+    (which then evaluates each d/dx as its derivative, without rebuilding a large
+    form).  The pairs (tidied piece, piece as built) go to ``pieces`` as in
+    :func:`evaluate`, once per piece."""
+    untidy = red._cache.get("untidy", {})
+    out = {}
+    for s in shown:
+        for node in instances(s, TotalD):
+            if node in out:
+                continue
+            f = node.args[0]
+            built = untidy.get(f, f) if pieces is not None else f
+            if built is not f:
+                pieces.append((f, built))
+            out[node] = red._D(built)
+    return out
+
+
 def check_reading(label, claim, shown, library, red, sample=None):
     """Check that the reading forms ``shown`` (a list) equal the library's ``library``:
     exactly by ``expand`` when cheap, else at random admissible points (40 digits).  Each
     piece under a d/dq_eps is compared with the piece the library built, and the form
     with the library's pieces differentiated is compared with ``library``."""
     pieces = []
-    lhs = [evaluate(s, red, pieces) for s in shown] + [a for a, _ in pieces]
+    definitions = carried_out(shown, red, pieces)
+    lhs = list(shown) + [a for a, _ in pieces]
     rhs = list(library) + [b for _, b in pieces]
-    return check_identity(label, claim, lhs, rhs, sample or red._sample)
+    return check_identity(label, claim, lhs, rhs, sample or red._sample,
+                          definitions=definitions)
 
 
 def _primes(red):

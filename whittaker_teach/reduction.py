@@ -564,9 +564,10 @@ class Reduction:
         along = {x: x + s}
         along.update({q: q + s * p for q, p in zip(qs, qps)})
         along.update({p: p + s * self._qpp[c] for p, c in zip(qps, self._nus)})
-        out = []
+        out, on_path, at_zero = [], {}, {}      # memos: the equations share most pieces
         for q, p in zip(qs, qps):
-            rate = substitute(d(substitute(d(self._Lstar, p), along), s), {s: sp.S.Zero})
+            moved = substitute(d(self._Lstar, p), along, on_path)
+            rate = substitute(d(moved, s), {s: sp.S.Zero}, at_zero)
             out.append(rate - d(self._Lstar, q))
         return out
 

@@ -25,7 +25,7 @@ import sympy as sp
 from mpmath import libmp
 from mpmath.libmp import ComplexResult, mpf_add, mpf_mul, mpf_pow_int, mpf_sqrt
 
-from .dag import expanded_terms, tree_size
+from .dag import expanded_terms, substitute, tree_size
 from .polywalk import vanishes
 
 __all__ = ["Check", "check_identity", "check_zero", "evaluate", "largest_value",
@@ -42,6 +42,12 @@ POINTS = 6
 EXACT_SIZE_LIMIT = 450
 #: ... and so is an ``expand`` estimated to produce more terms than this.
 EXACT_TERMS_LIMIT = 200
+#: Sides with nodes that stand for larger expressions (``check_identity``'s
+#: ``definitions``) are rebuilt with them for an exact attempt only when the sides and
+#: the definitions together have at most this many nodes: above it, the rebuilt sides
+#: would be well over ``EXACT_SIZE_LIMIT`` (and rebuilding a large sum costs more
+#: than checking it numerically).
+SUBSTITUTE_LIMIT = 4 * EXACT_SIZE_LIMIT
 
 
 @dataclass(frozen=True)
@@ -65,6 +71,9 @@ class Check:
     lhs: tuple = field(default=(), repr=False, compare=False)
     rhs: tuple = field(default=(), repr=False, compare=False)
     sample: object = field(default=None, repr=False, compare=False)
+    #: {node: its definition}: a node of ``lhs`` or ``rhs`` (such as an unevaluated
+    #: d/dx) that was evaluated as the expression it stands for (empty: none)
+    definitions: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def status(self) -> str:
@@ -96,6 +105,16 @@ class Check:
 
 def _as_list(x):
     return list(x) if isinstance(x, (list, tuple)) else [x]
+
+
+def _small(exprs, limit):
+    """Whether the tree sizes of ``exprs`` add up to at most ``limit``."""
+    total = 0
+    for e in exprs:
+        total += tree_size(e, limit)
+        if total > limit:
+            return False
+    return True
 
 
 def _exactly_zero(diff):
@@ -346,14 +365,23 @@ _REPS = {}      # expression -> its representative
 _IDS = {}       # id(object) -> (object, representative); the object is kept alive
 
 
-def _canonical(exprs):
+def _canonical(exprs, definitions=None):
     """Register every subexpression of ``exprs`` with its representative (the first
     equal one seen); below a copy nothing is registered: its representative's
-    subexpressions are evaluated in its place."""
+    subexpressions are evaluated in its place.  A node of ``definitions`` gets the
+    representative of its definition (it is evaluated as that)."""
+    definitions = definitions or {}
+    if definitions:
+        _canonical(list(definitions.values()))
     stack = list(exprs)
     while stack:
         e = stack.pop()
         if id(e) in _IDS:
+            continue
+        if e in definitions:
+            d = definitions[e]
+            rep = _REPS[e] = _IDS[id(d)][1]
+            _IDS[id(e)] = (e, rep)
             continue
         rep = _REPS.setdefault(e, e)
         _IDS[id(e)] = (e, rep)
@@ -540,10 +568,10 @@ def _points(sample, seed):
     return table[key]
 
 
-def _numeric(lhs, rhs, sample, points, seed):
+def _numeric(lhs, rhs, sample, points, seed, definitions=None):
     """Largest relative residual of lhs - rhs over random points, and the count."""
     pts = _points(sample, seed)
-    _canonical(list(lhs) + list(rhs))
+    _canonical(list(lhs) + list(rhs), definitions)
     try:
         return _residuals(lhs, rhs, pts, points)
     finally:
@@ -588,15 +616,35 @@ def largest_value(expr, sample, points=POINTS, seed=0):
     return worst
 
 
-def check_identity(label, claim, lhs, rhs, sample, *, exact=True, points=POINTS, seed=0):
+def check_identity(label, claim, lhs, rhs, sample, *, exact=True, points=POINTS, seed=0,
+                   definitions=None):
     """Check ``lhs == rhs`` (expressions or equal-length lists of them).
 
     ``sample(rng)`` returns a dict {Symbol: float} of one random admissible
-    point; it must give a value for every free symbol.
+    point; it must give a value for every free symbol.  ``definitions``, a dict
+    {node: expression}, says that each such node of the sides (an unevaluated
+    d/dx, say) stands for its expression.  Where the sides with every node
+    replaced would be small enough for an exact attempt (at most
+    ``SUBSTITUTE_LIMIT`` nodes before the replacement) they are rebuilt so;
+    otherwise the numeric check evaluates each node as its definition, and the
+    large sides are never rebuilt.
+
+    >>> x = sp.Symbol("x")
+    >>> d = sp.Function("D")(x)
+    >>> check_identity("d", "", d + 1, sp.cos(x), lambda rng: {x: 0.3},
+    ...                definitions={d: sp.cos(x) - 1}).detail
+    'identical as built'
     """
     lhs = [sp.sympify(a) for a in _as_list(lhs)]
     rhs = [sp.sympify(b) for b in _as_list(rhs)]
-    what = dict(lhs=tuple(lhs), rhs=tuple(rhs), sample=sample)
+    definitions = dict(definitions or {})
+    if definitions and _small(lhs + rhs + list(definitions.values()), SUBSTITUTE_LIMIT):
+        lhs = [substitute(a, definitions) for a in lhs]
+        rhs = [substitute(b, definitions) for b in rhs]
+        definitions = {}
+    elif definitions:
+        exact = False          # the sides as they stand are not the expressions meant
+    what = dict(lhs=tuple(lhs), rhs=tuple(rhs), sample=sample, definitions=definitions)
     if len(lhs) != len(rhs):
         return Check(label, claim, False, "exact", f"{len(lhs)} left sides, {len(rhs)} right sides",
                      **what)
@@ -605,7 +653,7 @@ def check_identity(label, claim, lhs, rhs, sample, *, exact=True, points=POINTS,
         if ways:
             return Check(label, claim, True, "exact", ", ".join(sorted(set(ways))), **what)
     try:
-        worst, used = _numeric(lhs, rhs, sample, points, seed)
+        worst, used = _numeric(lhs, rhs, sample, points, seed, definitions)
     except Unevaluable as err:
         return Check(label, claim, None, "unverified", f"not evaluable numerically: {err}", **what)
     detail = f"mpmath at {DPS} digits"

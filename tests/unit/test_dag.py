@@ -88,3 +88,13 @@ def test_zeroed_drops_terms_and_keeps_the_sum_canonical():
     z = zeroed(e, [x])
     assert z == 3 + b * c + b**2 and z == sp.Add(*z.args)
     assert zeroed(x * a, [x]) == 0 and zeroed(x, [x]) == 0 and zeroed(a + b, [x]) == a + b
+
+
+def test_instances_visits_shared_subtrees_once():
+    x, y = sp.symbols("x y")
+    s = sp.sin(x + y)
+    e = s * sp.cos(s) + sp.cos(x) + s**2
+    assert dag.instances(e, sp.cos) == list(dict.fromkeys(
+        a for a in sp.preorder_traversal(e) if isinstance(a, sp.cos)))
+    assert set(dag.instances(e, sp.sin)) == e.atoms(sp.sin) == {s}
+    assert dag.instances(x + y, sp.sin) == []

@@ -159,3 +159,28 @@ def test_powers_combined_expands_only_sums_that_may_be_equal():
         assert mine == _powers_combined_by_expand(e)
         merged += mine != e
     assert merged > 20
+
+
+def test_reading_checks_without_rebuilding_agree(red, monkeypatch):
+    """With every d/dq_eps of (1.26) evaluated as its derivative (the large-system path)
+    instead of carried out into a rebuilt form, the forms hold and a wrong one fails."""
+    label = "1.26"
+    import whittaker_teach.verify as V
+    monkeypatch.setattr(V, "SUBSTITUTE_LIMIT", 0)
+    shown, library = FORMS[label]
+    forms, lib = shown(red), list(library(red))
+    chk = R.check_reading(label, "reading form", forms, lib, red)
+    assert chk.holds is True and chk.method == "numeric" and chk.definitions
+    assert all(isinstance(n, R.TotalD) for n in chk.definitions)
+    wrong = [forms[0] * sp.Rational(11, 10) + red.h] + forms[1:]
+    assert R.check_reading(label, "wrong", wrong, lib, red).holds is False
+
+
+def test_carried_out_matches_evaluate(red):
+    """The definitions of the TotalD nodes are what ``evaluate`` substitutes."""
+    from whittaker_teach.dag import substitute
+    forms = R.whittaker_forms(red)
+    defs = R.carried_out(forms, red, [])
+    assert defs and all(isinstance(n, R.TotalD) for n in defs)
+    for f in forms:
+        assert substitute(f, defs) == R.evaluate(f, red, [])

@@ -55,3 +55,24 @@ def test_raw_evaluation_gives_evaluates_bits():
                 assert mine == theirs and type(mine) is type(theirs)
             for e in exprs[:2]:
                 assert verify._raw(e, raw, prec) == verify.evaluate(e, dict(pt))._mpf_
+
+
+def test_definitions_small_sides_are_rebuilt_for_an_exact_attempt():
+    d = sp.Function("D")(x)                   # an unevaluated node standing for cos(x) - 1
+    c = check_identity("t", "defined", d + 1, sp.cos(x), sample, definitions={d: sp.cos(x) - 1})
+    assert c.holds and c.method == "exact" and c.definitions == {}
+    assert c.lhs == (sp.cos(x),)
+
+
+def test_definitions_large_sides_evaluate_each_node_as_its_definition(monkeypatch):
+    import whittaker_teach.verify as V
+    monkeypatch.setattr(V, "SUBSTITUTE_LIMIT", 0)
+    d = sp.Function("D")(x)
+    c = check_identity("t", "defined", d * sp.sin(x) + 1, sp.cos(x) * sp.sin(x) + 1, sample,
+                       definitions={d: sp.cos(x)})
+    assert c.holds and c.method == "numeric" and c.max_residual < 1e-30
+    assert c.lhs == (d * sp.sin(x) + 1,) and c.definitions == {d: sp.cos(x)}
+    # the node is evaluated as its definition, so a wrong definition fails
+    c = check_identity("t", "wrong", d * sp.sin(x) + 1, sp.cos(x) * sp.sin(x) + 1, sample,
+                       definitions={d: sp.cos(x) + x / 1000})
+    assert c.holds is False and c.max_residual > 1e-6
