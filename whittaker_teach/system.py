@@ -47,6 +47,7 @@ from sympy.core.function import AppliedUndef
 from .coordinates import T, name, sign_assumptions
 from .dag import diff, max_depth, power, substitute, tree_size, zeroed
 from .errors import ModelError, ModelTypeError, guarded
+from .linear import lu_solve
 from .reduction import Reduction
 from .rewrite import collected, rational
 from .steps import Derivation, Report, Step, eq
@@ -351,11 +352,14 @@ class ChaplyginSystem:
         large entry is a long walk of assumption queries (a seventh of the holonomic
         family's reduce at n = 8); small matrices keep SymPy's own choice."""
         point = self._require_regular(M, what, sample)
-        if M.is_diagonal():
-            return [-rest[i] * power(M[i, i], -1) for i in range(M.rows)]
-        if sum(tree_size(e, PIVOT_BY_VALUE_NODES) for e in M) <= PIVOT_BY_VALUE_NODES:
-            return list(M.LUsolve(-rest))
-        return list(M.LUsolve(-rest, iszerofunc=_zero_at(point)))
+        n = M.rows
+        if all(M[i, j] is sp.S.Zero for i in range(n) for j in range(n) if i != j):
+            return [-rest[i] * power(M[i, i], -1) for i in range(n)]
+        small = sum(tree_size(e, PIVOT_BY_VALUE_NODES) for e in M) <= PIVOT_BY_VALUE_NODES
+        try:
+            return lu_solve(M, -rest) if small else lu_solve(M, -rest, _zero_at(point))
+        except ValueError as err:
+            raise ModelError(f"singular kinetic energy: {what} is singular (1.4)") from err
 
     def _require_regular(self, M, what, sample):
         """The values at a sampled point where ``M`` is regular (det far from 0), or
