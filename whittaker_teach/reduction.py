@@ -36,7 +36,7 @@ import mpmath
 import sympy as sp
 
 from .coordinates import name as _name, sign_assumptions as _assume
-from .dag import diff, power, substitute, tree_size, zeroed
+from .dag import along, diff, power, substitute, tree_size, zeroed
 from .errors import ModelError, ModelTypeError, guarded
 from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
                       velocity_form, whittaker_forms)
@@ -549,26 +549,20 @@ class Reduction:
                        rates, chk))
         return st
 
-    def _whittaker_127(self, differentiate=None):
+    def _whittaker_127(self):
         """Whittaker's equations (1.27), d/dq_eps(dL*/dq'_nu) - dL*/dq_nu, one per q_nu,
         by a route other than (1.26)'s: d/dq_eps along the path is the derivative in s of
-        f(q_eps + s, q + s q', q' + s q'') at s = 0 (not the chain-rule sum ``_D``).
-        ``differentiate(f, z)`` defaults to ``_d`` (:func:`.dag.diff` with the system's memo,
-        so dL*/dq' is the one (1.26) took); ``sp.diff`` gives the same expressions (the unit
-        tests compare the two routes)."""
-        d = differentiate or self._d
+        f(q_eps + s, q + s q', q' + s q'') at s = 0, taken in one pass through the tree of
+        f (:func:`.dag.along`), not the chain-rule sum of partial derivatives ``_D``."""
         x = self.independent
-        qs = [self.system.q[c] for c in self._nus]
-        qps = [self._qp[c] for c in self._nus]
-        s = sp.Dummy("s")
-        along = {x: x + s}
-        along.update({q: q + s * p for q, p in zip(qs, qps)})
-        along.update({p: p + s * self._qpp[c] for p, c in zip(qps, self._nus)})
-        out, on_path, at_zero = [], {}, {}      # memos: the equations share most pieces
-        for q, p in zip(qs, qps):
-            moved = substitute(d(self._Lstar, p), along, on_path)
-            rate = substitute(d(moved, s), {s: sp.S.Zero}, at_zero)
-            out.append(rate - d(self._Lstar, q))
+        path = {x: sp.S.One}
+        for c in self._nus:
+            path[self.system.q[c]] = self._qp[c]
+            path[self._qp[c]] = self._qpp[c]
+        out, memo = [], {}                  # one memo: the equations share most pieces
+        for c in self._nus:
+            rate = along(self._d(self._Lstar, self._qp[c]), path, memo)
+            out.append(rate - self._d(self._Lstar, self.system.q[c]))
         return out
 
     def _step_127(self):

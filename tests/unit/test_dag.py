@@ -98,3 +98,19 @@ def test_instances_visits_shared_subtrees_once():
         a for a in sp.preorder_traversal(e) if isinstance(a, sp.cos)))
     assert set(dag.instances(e, sp.sin)) == e.atoms(sp.sin) == {s}
     assert dag.instances(x + y, sp.sin) == []
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_along_is_the_derivative_along_the_moved_path(seed):
+    rng = random.Random(seed)
+    x, y, u, w = sp.symbols("x y u w")
+    atoms = [x, y, u, x * y, sp.sin(x), sp.cos(x - y), sp.sqrt(1 + x**2), sp.exp(y) + w]
+    e = sum(rng.choice(atoms) * rng.choice(atoms) ** rng.randint(-2, 2) for _ in range(4))
+    rates = {x: sp.Integer(1), y: u}
+    s = sp.Dummy("s")
+    want = sp.diff(e.xreplace({x: x + s, y: y + s * u}), s).subs(s, 0)
+    got = dag.along(e, rates)
+    pt = {x: 0.3, y: -0.7, u: 1.9, w: 0.4}
+    assert abs(complex((got - want).evalf(30, subs=pt))) < 1e-20
+    assert dag.along(e, {w: u}) == sp.diff(e, w) * u or sp.expand(dag.along(e, {w: u})
+                                                                  - sp.diff(e, w) * u) == 0
