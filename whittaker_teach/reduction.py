@@ -174,12 +174,16 @@ class Reduction:
         return substitute(expr, {self._v: self._vstar}, self._cache.setdefault("star", {}))
 
     def _D(self, f):
-        """d/dq_eps of f(q', q) along a path (q'' taken as independent, as in 2.1)."""
-        S = self.system
-        d = self._d
-        out = d(f, S.q[self._eps])
-        for c in self._nus:
-            out += d(f, self._qp[c]) * self._qpp[c] + d(f, S.q[c]) * self._qp[c]
+        """d/dq_eps of f(q', q) along a path (q'' taken as independent, as in 2.1), once
+        per f and reduction (the equations, their reading forms and (2.2) take the same)."""
+        memo = self._cache.setdefault("D", {})
+        out = memo.get(f)
+        if out is None:
+            S, d = self.system, self._d
+            out = d(f, S.q[self._eps])
+            for c in self._nus:
+                out += d(f, self._qp[c]) * self._qpp[c] + d(f, S.q[c]) * self._qp[c]
+            memo[f] = out
         return out
 
     def _chain(self, a, f, z):
