@@ -139,6 +139,8 @@ def _exact_ways(lhs, rhs):
     spares building the differences; then the smallest differences are tried first."""
     if not all(expand_may_equal(a, b) for a, b in zip(lhs, rhs)):
         return None                    # before building any difference of large sides
+    if any(_difference_above(a, b, EXACT_SIZE_LIMIT) for a, b in zip(lhs, rhs)):
+        return None                    # a difference too large for an attempt: not built
     diffs = [a - b for a, b in zip(lhs, rhs)]
     if not all(expand_may_vanish(d) for d in diffs):
         return None
@@ -150,6 +152,27 @@ def _exact_ways(lhs, rhs):
             return None
         ways.append(way)
     return ways
+
+
+def _difference_above(a, b, limit):
+    """Whether ``a - b`` as SymPy builds it certainly has more than ``limit`` nodes,
+    decided without building it: the terms that remain once equal terms are merged
+    (coefficients added, as ``Add`` does) have more nodes than that, apart from their
+    coefficients.  False when unsure (the difference is then built and measured)."""
+    terms = {}
+    for sign, side in ((1, a), (-1, b)):
+        for t in sp.Add.make_args(side):
+            if not isinstance(t, sp.Expr):
+                return False
+            c, rest = t.as_coeff_Mul()
+            terms[rest] = terms.get(rest, 0) + sign * c
+    size = 0
+    for rest, c in terms.items():
+        if c != 0:
+            size += tree_size(rest, limit)
+            if size > limit:
+                return True
+    return False
 
 
 # ----------------------------------------------------------------- screening

@@ -76,3 +76,25 @@ def test_definitions_large_sides_evaluate_each_node_as_its_definition(monkeypatc
     c = check_identity("t", "wrong", d * sp.sin(x) + 1, sp.cos(x) * sp.sin(x) + 1, sample,
                        definitions={d: sp.cos(x) + x / 1000})
     assert c.holds is False and c.max_residual > 1e-6
+
+
+def test_difference_above_is_a_lower_bound_on_the_built_difference():
+    import random
+
+    from whittaker_teach.dag import tree_size
+    from whittaker_teach.verify import _difference_above
+    y = sp.Symbol("y")
+    atoms = [x, y, sp.sin(x), sp.sqrt(1 + x * y), sp.Integer(2), sp.Rational(-1, 3), x * y**2]
+    rng, decided = random.Random(5), 0
+    for _ in range(300):
+        shared = [rng.choice(atoms) * rng.choice(atoms) for _ in range(rng.randint(0, 6))]
+        a = sp.Add(*shared, *[rng.choice(atoms) ** rng.randint(1, 3) for _ in range(rng.randint(0, 3))])
+        b = sp.Add(*shared, *[rng.randint(1, 3) * rng.choice(atoms) for _ in range(rng.randint(0, 3))])
+        for limit in (0, 3, 10, 30):
+            if _difference_above(a, b, limit):
+                decided += 1
+                assert tree_size(a - b, limit) > limit, (a, b, limit)
+    assert decided > 100
+    big = sp.Add(*[sp.Symbol(f"z{i}") * sp.sin(i * x) for i in range(1, 60)])
+    assert not _difference_above(big + x, big, 10)     # the large parts cancel: built
+    assert _difference_above(big, -big, 10)
