@@ -124,14 +124,14 @@ def tidy(expr, symbols=()):
     def factor_of(f):
         if isinstance(f, sp.Pow) and isinstance(f.base, sp.Add) and f.exp.is_Integer:
             return sp.Pow(factor_of(f.base), f.exp)
-        if isinstance(f, sp.Add) and all(p.exp.is_Integer for p in f.atoms(sp.Pow)):
+        if isinstance(f, sp.Add) and all(p.exp.is_Integer for p in instances(f, sp.Pow)):
             return collected(f, list(symbols))
         return f
 
     def term(t):
         return sp.Mul(*[factor_of(f) for f in sp.Mul.make_args(t)])
     expr = sp.sympify(expr)
-    if isinstance(expr, sp.Add) and all(p.exp.is_Integer for p in expr.atoms(sp.Pow)):
+    if isinstance(expr, sp.Add) and all(p.exp.is_Integer for p in instances(expr, sp.Pow)):
         return powers_combined(factor_of(expr))             # a polynomial: collect it whole
     return powers_combined(pythagoras(sp.Add(*[term(t) for t in sp.Add.make_args(expr)])))
 

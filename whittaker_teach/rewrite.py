@@ -11,7 +11,7 @@ a**2 + a*b*(tan(theta)**2 + 1)
 import sympy as sp
 
 from . import polywalk
-from .dag import expanded_terms
+from .dag import expanded_terms, instances
 
 __all__ = ["collected", "rational", "rational_parts", "pythagoras", "factored"]
 
@@ -138,7 +138,9 @@ def pythagoras(expr):
     >>> pythagoras((sp.sin(u)**2 + sp.cos(u)**2)*sp.cos(u))
     cos(u)
     """
-    args = {f.args[0] for f in expr.atoms(sp.sin, sp.cos)}
+    args = {f.args[0] for f in instances(expr, (sp.sin, sp.cos))}
+    if not args:
+        return expr
     return expr.xreplace({sp.sin(u)**2 + sp.cos(u)**2: sp.S.One for u in args})
 
 
