@@ -20,8 +20,8 @@ True
 
 import sympy as sp
 
-__all__ = ["tree_size", "substitute", "bottom_up", "instances", "along", "zeroed", "max_depth", "expanded_terms",
-           "diff", "power"]
+__all__ = ["tree_size", "substitute", "bottom_up", "instances", "along", "zeroed", "max_depth",
+           "expanded_terms", "diff", "power"]
 
 
 def tree_size(expr, limit):

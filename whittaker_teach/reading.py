@@ -27,8 +27,8 @@ from .dag import bottom_up, expanded_terms, instances, power, substitute, tree_s
 from .rewrite import RATIONAL_OPS_LIMIT, _ops_above, collected, factored, pythagoras
 from .verify import check_identity, expand_may_equal
 
-__all__ = ["TotalD", "powers_combined", "tidy", "evaluate", "carried_out", "check_reading", "velocity_form",
-           "lstar_form", "momentum_forms", "whittaker_forms", "cleared_forms", "nielsen_forms",
+__all__ = ["TotalD", "powers_combined", "tidy", "evaluate", "carried_out", "check_reading",
+           "velocity_form", "lstar_form", "momentum_forms", "whittaker_forms", "cleared_forms", "nielsen_forms",
            "total_derivative_form"]
 
 
@@ -154,19 +154,7 @@ def evaluate(expr, red, pieces=None):
     derivative the derivation has mostly taken already); the pair (tidied, as built) is
     then added to ``pieces``, a list, so that a check compares them too: equal functions
     have equal derivatives along every path, so the two checks together show the form."""
-    untidy = red._cache.get("untidy", {})
-
-    class CarriedOut:            # a "mapping" of every TotalD to its derivative
-        def __contains__(self, e):
-            return isinstance(e, TotalD)
-
-        def __getitem__(self, e):
-            f = e.args[0]
-            built = untidy.get(f, f) if pieces is not None else f
-            if built is not f:
-                pieces.append((f, built))
-            return red._D(built)
-    return substitute(expr, CarriedOut())        # each distinct subexpression once
+    return substitute(expr, carried_out([expr], red, pieces))
 
 
 def carried_out(shown, red, pieces=None):

@@ -650,7 +650,9 @@ def check_identity(label, claim, lhs, rhs, sample, *, exact=True, points=POINTS,
     replaced would be small enough for an exact attempt (at most
     ``SUBSTITUTE_LIMIT`` nodes before the replacement) they are rebuilt so;
     otherwise the numeric check evaluates each node as its definition, and the
-    large sides are never rebuilt.
+    large sides are never rebuilt.  Within :class:`shared_points` a node keeps its
+    definition for the later checks too: define only nodes that mean the same
+    everywhere (a d/dx of a given function, not a symbol that other checks sample).
 
     >>> x = sp.Symbol("x")
     >>> d = sp.Function("D")(x)
