@@ -522,6 +522,104 @@ def _raw_compute(e, memo, prec):
     raise _NotRaw
 
 
+# The first ``POINTS`` points of a sampler are evaluated together: each node is visited
+# once and its values at all of them are computed in one loop (a "vector", a list with
+# one raw value per point), instead of one visit, one memo look-up and one type dispatch
+# per node and point.  The operations and their order are those of ``_raw``, so the bits
+# are the same.  A point where a node cannot be done raw holds a marker instead of a
+# value: ``_NOT_RAW`` (that point's expression goes to ``evaluate``, as with ``_raw``) or
+# ``_FAIL`` (a pole or a domain error there: the point is skipped, as with ``_raw``);
+# a vector with a marker is a ``_Marked`` list, so that a clean one is checked by type.
+class _Marked(list):
+    """A vector with at least one marker (``_FAIL`` or ``_NOT_RAW``) among its values."""
+
+
+def _vector(e, memo, prec):
+    """The values of ``e`` at the points of the block (``memo``: node -> vector)."""
+    known = _IDS.get(id(e))
+    if known is not None and known[0] is e:
+        e = known[1]
+    v = memo.get(e)
+    if v is None:
+        try:
+            v = _vector_compute(e, memo, prec, memo[_WIDTH])
+        except RecursionError:
+            raise Unevaluable("an expression too deeply nested to evaluate")
+        memo[e] = v
+    return v
+
+
+_WIDTH = object()          # the block memo's entry for its number of points
+
+
+def _fold(op, vecs, prec):
+    """``op`` (mpf_add or mpf_mul) folded over the vectors, point by point, in order."""
+    out = vecs[0]
+    if any(type(v) is _Marked for v in vecs):
+        out = _Marked(out)
+        for v in vecs[1:]:
+            for i, (x, y) in enumerate(zip(out, v)):
+                if x is _FAIL or y is _FAIL:
+                    out[i] = _FAIL
+                elif x is _NOT_RAW or y is _NOT_RAW:
+                    out[i] = _NOT_RAW
+                else:
+                    out[i] = op(x, y, prec, "n")
+        return out
+    for v in vecs[1:]:
+        out = [op(x, y, prec, "n") for x, y in zip(out, v)]
+    return out
+
+
+def _map(fn, vec):
+    """``fn`` at each point; a marker stays, ComplexResult gives ``_NOT_RAW``, another
+    evaluation error ``_FAIL``."""
+    out, marked = [], type(vec) is _Marked
+    for x in vec:
+        if x is _FAIL or x is _NOT_RAW:
+            out.append(x)
+            continue
+        try:
+            out.append(fn(x))
+        except ComplexResult:
+            out.append(_NOT_RAW)
+            marked = True
+        except _EVAL_ERRORS:
+            out.append(_FAIL)
+            marked = True
+    return _Marked(out) if marked else out
+
+
+def _vector_compute(e, memo, prec, width):
+    if e.is_Add or e.is_Mul:
+        return _fold(mpf_add if e.is_Add else mpf_mul,
+                     [_vector(a, memo, prec) for a in e.args], prec)
+    if e.is_Pow:
+        b, x = _vector(e.base, memo, prec), e.exp
+        if x.is_Integer:
+            k = int(x)
+            return _map(lambda v: mpf_pow_int(v, k, prec, "n"), b)
+        if x.is_Rational and x.q == 2:
+            k = int(x.p)
+            return _map(lambda v: mpf_pow_int(mpf_sqrt(v, prec, "n"), k, prec, "n"), b)
+        return _Marked([_NOT_RAW] * width)
+    if e.is_Symbol:
+        raise KeyError(f"no sample value for {e}")
+    if e.is_Number or e.is_NumberSymbol:
+        try:
+            v = _number(e)
+        except _EVAL_ERRORS:
+            return _Marked([_FAIL] * width)
+        if not isinstance(v, mpmath.mpf):
+            return _Marked([_NOT_RAW] * width)
+        return [v._mpf_] * width
+    if isinstance(e, sp.Function) and len(e.args) == 1:
+        fn = _RAW.get(e.func.__name__)
+        if fn is not None:
+            return _map(lambda v: fn(v, prec, "n"), _vector(e.args[0], memo, prec))
+    return _Marked([_NOT_RAW] * width)
+
+
 def _value(e, memo, raw, prec):
     """The value of ``e`` at a point: from raw arithmetic when it can, else
     :func:`evaluate` (the memo ``memo`` of mpf values)."""
@@ -551,6 +649,21 @@ class _Points:
     def raw(self, i):
         self[i]
         return self.raws[i]
+
+    def block(self):
+        """The memo of the vectors at points 0 .. POINTS - 1 (:func:`_vector`), made with
+        the sampled values; None when the points do not all give the same symbols."""
+        if not hasattr(self, "_block"):
+            self[POINTS - 1]
+            raws = self.raws[:POINTS]
+            keys = raws[0].keys()
+            self._block = None
+            if all(r.keys() == keys for r in raws):
+                self._block = {_WIDTH: POINTS}
+                for s in keys:
+                    vec = [r[s] for r in raws]
+                    self._block[s] = _Marked(vec) if _NOT_RAW in vec else vec
+        return self._block
 
 
 _SHARED = []
@@ -602,16 +715,34 @@ def _numeric(lhs, rhs, sample, points, seed, definitions=None):
             _forget_canonical()
 
 
+def _at(e, vec, i, pts):
+    """The value of ``e`` at point ``i`` of the block, from its vector ``vec``."""
+    v = vec[i]
+    if v is _FAIL:
+        raise ValueError("this subexpression failed to evaluate at this point")
+    if v is _NOT_RAW:
+        return evaluate(e, pts[i])
+    return mpmath.mp.make_mpf(v)
+
+
 def _residuals(lhs, rhs, pts, points):
     worst, used, attempts = 0.0, 0, 0
     with mpmath.workdps(DPS):
         prec = mpmath.mp.prec
+        block = pts.block()
+        if block is not None:              # the first POINTS points: all at once
+            vecs = [(_vector(a, block, prec), _vector(b, block, prec)) for a, b in zip(lhs, rhs)]
         while used < points and attempts < 4 * points:
-            memo, raw = pts[attempts], pts.raw(attempts)
+            i = attempts
             attempts += 1
             try:
-                vals = [(_value(a, memo, raw, prec), _value(b, memo, raw, prec))
-                        for a, b in zip(lhs, rhs)]
+                if block is not None and i < POINTS:
+                    vals = [(_at(a, va, i, pts), _at(b, vb, i, pts))
+                            for (a, b), (va, vb) in zip(zip(lhs, rhs), vecs)]
+                else:
+                    memo, raw = pts[i], pts.raw(i)
+                    vals = [(_value(a, memo, raw, prec), _value(b, memo, raw, prec))
+                            for a, b in zip(lhs, rhs)]
             except (ZeroDivisionError, ValueError, OverflowError, TypeError):
                 continue
             if not all(mpmath.isfinite(a) and mpmath.isfinite(b) for a, b in vals):
@@ -634,8 +765,14 @@ def largest_value(expr, sample, points=POINTS, seed=0):
     """
     pts, worst = _points(sample, seed), 0.0
     with mpmath.workdps(DPS):
+        block = pts.block() if points <= POINTS else None
+        vec = None if block is None else _vector(expr, block, mpmath.mp.prec)
         for i in range(points):
-            worst = max(worst, float(abs(evaluate(expr, pts[i]))))
+            if vec is None or vec[i] is _FAIL or vec[i] is _NOT_RAW:
+                v = evaluate(expr, pts[i])      # (a failure raises as evaluate raises it)
+            else:
+                v = mpmath.mp.make_mpf(vec[i])
+            worst = max(worst, float(abs(v)))
     return worst
 
 

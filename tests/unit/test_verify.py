@@ -98,3 +98,56 @@ def test_difference_above_is_a_lower_bound_on_the_built_difference():
     big = sp.Add(*[sp.Symbol(f"z{i}") * sp.sin(i * x) for i in range(1, 60)])
     assert not _difference_above(big + x, big, 10)     # the large parts cancel: built
     assert _difference_above(big, -big, 10)
+
+
+def test_block_evaluation_gives_the_points_bits():
+    """The first POINTS points are evaluated together (``verify._vector``: one visit per
+    node, a value per point); at each point the value is the very mpf ``evaluate`` gives,
+    a root of a negative number goes to ``evaluate`` at that point only, and a pole at one
+    point makes only that point fail."""
+    import mpmath
+    from whittaker_teach import verify
+    y = sp.Symbol("y")
+    xs = [0.3, 0.5, 1.1, 2.5, 0.7, 1.9]                # x - 1/2 vanishes at point 1
+
+    def smp(rng):
+        return {x: xs.pop(0) if xs else rng.uniform(0.1, 3.0), y: rng.uniform(0.5, 2.0)}
+    exprs = [sp.sqrt(x**2 + 1) / (x - y)**3 + sp.tan(x) * sp.exp(-y) - sp.Rational(1, 3),
+             sp.log(x + 2) * sp.atan(y) + sp.cosh(x * y)**2 + sp.pi * x,
+             sp.sqrt(x - 1) + y,                      # complex at the points with x < 1
+             sp.besselj(0, x) + y,                    # no raw form
+             1 / (2 * x - 1) + y]                     # a pole at point 1
+    pts = verify._Points(smp, 0)
+    with mpmath.workdps(verify.DPS):
+        prec = mpmath.mp.prec
+        block = pts.block()
+        for e in exprs:
+            vec = verify._vector(e, block, prec)
+            for i in range(verify.POINTS):
+                try:
+                    theirs = verify.evaluate(e, dict(pts[i]))
+                except ZeroDivisionError:
+                    assert e == exprs[-1] and i == 1 and vec[i] is verify._FAIL
+                    continue
+                mine = verify._at(e, vec, i, pts)
+                assert mine == theirs and type(mine) is type(theirs), (e, i)
+        assert type(verify._vector(exprs[2], block, prec)) is verify._Marked
+        assert type(verify._vector(exprs[0], block, prec)) is list     # clean: no marker
+
+
+def test_block_and_point_by_point_checks_agree(monkeypatch):
+    """A check's residuals are the same whether its first points are evaluated as a block
+    or one by one, also when a pole at one of them sends it to a seventh point."""
+    from whittaker_teach import verify
+    y = sp.Symbol("y")
+    lhs = [sp.sqrt(x**2 + 1) * sp.sin(y) / (2 * x - 1), sp.sqrt(x - 1) * y]
+    rhs = [sp.sin(y) * sp.sqrt(1 + x**2) / (2 * x - 1) + 1e-28 * x, y * sp.sqrt(x - 1)]
+
+    def smp(rng):
+        return {x: rng.choice([0.5, 0.3, 1.7, 2.2]), y: rng.uniform(0.5, 2.0)}
+    # seed 2: x = 0.5 (a pole) at point 0, x = 0.3 (complex roots) at points 3 and 4
+    block = check_identity("b", "", lhs, rhs, smp, exact=False, seed=2)
+    monkeypatch.setattr(verify._Points, "block", lambda self: None)
+    single = check_identity("b", "", lhs, rhs, smp, exact=False, seed=2)
+    assert block.points == single.points == 6 and block.holds and single.holds
+    assert block.max_residual == single.max_residual > 0
