@@ -504,20 +504,34 @@ _COMB = {"dot": "\u0307", "ddot": "\u0308", "tilde": "\u0303"}
 _SUP = str.maketrans("0123456789+-*", "⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻*")
 
 
+_FUNCTIONS = "sinh|cosh|tanh|sin|cos|tan|cot|sec|csc|exp|log|ln"
+
+
+def _function_name(m):
+    """``\\cos`` as `` cos``: apart from what stands before it, and from its argument
+    unless that is a power or a parenthesis (C cos θ, cos²θ, sin(φ))."""
+    name, after = m.group(1), m.group(2)
+    return f" {name}" + ("" if after[:1] in ("^", "(", "") else " ")
+
+
 def _tex_to_unicode(tex):
     s = re.sub(r"\\operatorname\{([^{}]*)\}\s*", r"\1 ", tex)
     s = re.sub(r"\\(mathrm|text)\{([^{}]*)\}", r"\2", s)
     s = re.sub(r"\\frac\{([^{}]*)\}\{([^{}]*)\}", r"\1/\2", s)
-    for a, b in _UNI:
-        s = re.sub(re.escape(a) + r"(?![A-Za-z])", b, s)
+    s = re.sub(r"\\(" + _FUNCTIONS + r")(?![A-Za-z])\s*(?=(.?))", _function_name, s)
+    for a, b in _UNI:           # a letter after a control word is part of another word
+        s = re.sub(re.escape(a) + (r"(?![A-Za-z])" if a[-1].isalpha() else ""), b, s)
     for name, mark in _COMB.items():
         s = re.sub(r"\\" + name + r"\s*\{?(\w)\}?", lambda m: m.group(1) + mark, s)
     s = re.sub(r"\^\{?([0-9+\-*]+)\}?", lambda m: m.group(1).translate(_SUP), s)
     s = re.sub(r"\\(dots|ldots)(?![A-Za-z])", "…", s)
     s = re.sub(r"\\([A-Za-z]+)", r"\1", s)
+    s = re.sub(r"_\{(\([^{}]*\))\}", r"_\1", s)         # _{(1.26b)}: its own parentheses
     s = re.sub(r"_\{([^{}]{2,})\}", r"_(\1)", s)
-    s = re.sub(r"∂\s+", "∂", s)
-    return s.replace("{", "").replace("}", "").replace("\\", "").replace("  ", " ")
+    s = re.sub(r"([∂√])\s+", r"\1", s)
+    s = re.sub(r"([(\[]) +", r"\1", s)
+    s = s.replace("{", "").replace("}", "").replace("\\", "").replace("  ", " ")
+    return s.strip()
 
 
 def text_unicode(text: str) -> str:
@@ -525,6 +539,8 @@ def text_unicode(text: str) -> str:
 
     >>> text_unicode(r"$\\partial\\Omega/\\partial\\dot q_\\varepsilon$ and $\\tilde L$")
     '∂Ω/∂q̇_ε and L̃'
+    >>> text_unicode(r"$\\dot x\\tan\\theta = -C\\sin\\theta$, $F'(\\theta)\\,F$, $J\\cos^2\\theta$")
+    "ẋ tan θ = -C sin θ, F'(θ) F, J cos²θ"
     """
     return re.sub(r"\$([^$]+)\$", lambda m: _tex_to_unicode(m.group(1)), text)
 

@@ -67,8 +67,8 @@ def _check_values(expr, what):
     if expr.has(sp.nan):
         raise ModelError(f"{what} contains nan (not a number): L and the constraints must be "
                          "finite real expressions (1.1)")
-    if expr.has(sp.oo, sp.zoo):
-        raise ModelError(f"{what} contains an infinity (oo or zoo): L and the constraints must "
+    if expr.has(sp.oo, -sp.oo, sp.zoo):
+        raise ModelError(f"{what} contains an infinity (oo, -oo or zoo): L and the constraints must "
                          "be finite real expressions (1.1)")
     if expr.has(sp.I):
         raise ModelError(f"{what} contains the imaginary unit I: complex coefficients are not "

@@ -134,7 +134,8 @@ def test_unknown_example():
 # ----- issue 12: complex, infinite, deep, positively homogeneous input ---------------
 @pytest.mark.parametrize("bad_L, fragment", [
     (L + sp.I * J * thd**2, r"L contains the imaginary unit I: complex coefficients"),
-    (L + sp.oo * th, r"contains an infinity \(oo or zoo\)"),
+    (L + sp.oo * th, r"contains an infinity \(oo, -oo or zoo\)"),
+    (L - sp.oo * th, r"contains an infinity"),           # -oo is another singleton
     (L + sp.zoo * th, r"contains an infinity"),
     (L + sp.nan * th, r"contains nan \(not a number\)"),
     (L.subs(J, sp.Symbol("J", complex=True)), r"parameter J is declared complex \(not real\)"),
