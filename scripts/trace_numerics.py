@@ -6,7 +6,8 @@ of ``simulate`` (full model, reduced model, DLA), cold (code generated) and warm
 
 A transition is a direct call from one module of whittaker_teach to another (imports
 and the right-hand sides that scipy calls back are not transitions: their caller is
-scipy).  ``-v`` lists them.  The architecture note of the developers' guide: one entry per
+scipy; nor are calls into ``numerics.portable``, the arithmetic that stands in for numpy's
+``dot`` and ``linalg.solve`` inside a step, a leaf used as numpy is).  ``-v`` lists them.  The architecture note of the developers' guide: one entry per
 model, the code generation behind it, the input checked once up front.
 """
 from __future__ import annotations
@@ -17,6 +18,8 @@ import sys
 import whittaker_teach as wt
 
 PKG = os.path.dirname(wt.__file__)
+#: arithmetic helpers used like a library (numpy's stand-ins): not an architectural crossing
+LEAVES = ("numerics.portable",)
 
 
 def _module(code):
@@ -38,7 +41,7 @@ def transitions(fn):
         if m is None or name in ("<module>", "__getattr__") or frame.f_back is None:
             return
         caller = _module(frame.f_back.f_code)
-        if caller is not None and caller != m:
+        if caller is not None and caller != m and m not in LEAVES:
             seq.append((caller, m, name))
     sys.setprofile(prof)
     try:

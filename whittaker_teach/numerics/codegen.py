@@ -44,8 +44,42 @@ def cache_of(obj):
 
 
 def _lambdify(args, exprs, module="math"):
-    """``lambdify`` with CSE; ``args`` a flat list of symbols, ``exprs`` a list (or matrix)."""
+    """``lambdify`` with CSE; ``args`` a flat list of symbols, ``exprs`` a list (or matrix).
+
+    ``"math"``: a function of floats.  ``"numpy"``: a function of arrays, printed by
+    :class:`PortablePrinter`, whose values are the same on every processor."""
+    if module == "numpy":
+        from .portable import numpy_functions
+        return sp.lambdify(args, exprs, modules=[numpy_functions(), "numpy"], cse=True,
+                           printer=_portable_printer())
     return sp.lambdify(args, exprs, modules=module, cse=True)
+
+
+def _portable_printer():
+    """numpy's printer with the functions whose numpy versions depend on the processor
+    (numpy's AVX-512 code for exp, log, tan, powers ...) taken from
+    :func:`.portable.numpy_functions` instead: ``_pt_tan(x)``, ``_pt_power(x, 3.0)``;
+    square roots and reciprocals stay numpy's (exactly rounded everywhere)."""
+    from sympy.printing.numpy import NumPyPrinter
+
+    class PortablePrinter(NumPyPrinter):
+        _kf = {**NumPyPrinter._kf, **{f: f"_pt_{m}" for f, m in _PORTABLE_NAMES.items()}}
+
+        def _print_Pow(self, expr, rational=False):
+            if expr.exp == sp.S.Half:
+                return super()._print_Pow(expr, rational)
+            if expr.exp == -1:
+                return f"(1/({self._print(expr.base)}))"
+            return f"_pt_power({self._print(expr.base)}, {float(expr.exp)!r})"
+    return PortablePrinter({"fully_qualified_modules": False, "inline": True,
+                            "allow_unknown_functions": True, "user_functions": {}})
+
+
+# SymPy's function names -> math's (the functions of :func:`.portable.numpy_functions`)
+_PORTABLE_NAMES = {"exp": "exp", "log": "log", "sin": "sin", "cos": "cos", "tan": "tan",
+                   "atan": "atan", "asin": "asin", "acos": "acos", "sinh": "sinh",
+                   "cosh": "cosh", "tanh": "tanh", "asinh": "asinh", "acosh": "acosh",
+                   "atanh": "atanh", "atan2": "atan2"}
 
 
 def trig_as_sin_cos(expr):
@@ -244,21 +278,18 @@ def _time_exprs_multiplier(S):
 
 
 def _numeric_multiplier(S, P):
-    """rhs(y, p) for the multiplier form, with the (n+g) linear system solved by numpy."""
-    import numpy as np
+    """rhs(y, p) for the multiplier form, with the (n+g) linear system solved in Python
+    floats (:func:`.portable.solve`: the same bits on every processor)."""
+    from .portable import solve
     q, v, M, A, r, Adot_v, _E = _multiplier_parts(S)
     n, g = len(q), A.rows
     parts = _lambdify(q + v + P, [M.tolist(), A.tolist(), list(r), list(Adot_v)])
 
     def rhs(y, p):
         Mv, Av, rv, cv = parts(*y, *p)
-        K = np.zeros((n + g, n + g))
-        K[:n, :n] = Mv
-        if g:
-            K[:n, n:] = -np.array(Av).T
-            K[n:, :n] = Av
-        b = np.concatenate([-np.asarray(rv, dtype=float), -np.asarray(cv, dtype=float)])
-        return list(y[n:]) + np.linalg.solve(K, b)[:n].tolist()
+        K = [list(Mv[i]) + [-Av[j][i] for j in range(g)] for i in range(n)]
+        K += [list(Av[j]) + [0.0] * g for j in range(g)]
+        return list(y[n:]) + solve(K, [-float(v) for v in list(rv) + list(cv)])[:n]
     return rhs
 
 
@@ -427,12 +458,14 @@ class DLAModel:
         """(q0 array, p0 = M qdot + b): positions and momenta from {coordinate: value}
         ``q`` (all) and ``v`` (the independent velocities); ModelError at a pole of (1.3)."""
         import numpy as np
+
+        from .portable import dot
         S = self.system
         qv = [q[c] for c in S.coordinates]
         allv = np.array(_all_velocities(S, self.from_independent, qv,
                                         [v[c] for c in S.independent_coordinates], P))
         M, b = self.legendre(*qv, *P)
-        return np.array(qv), np.array(M, dtype=float) @ allv + np.array(b, dtype=float)
+        return np.array(qv), np.array([dot(row, allv) + float(bi) for row, bi in zip(M, b)])
 
 
 def _build_dla(S):

@@ -36,6 +36,7 @@ from scipy.special import jv
 
 from ..errors import ModelError
 from .ivp import ARITHMETIC
+from .portable import combine
 from .validate import ROUNDOFF, real
 
 __all__ = ["SledgeExact", "sledge_exact", "terms_needed", "MAX_TERMS"]
@@ -154,8 +155,11 @@ class SledgeExact:
         tt = np.asarray(t, dtype=float) - self.t0
         psi = self.omega * tt + self.phi
         th = self.a * np.cos(psi)
-        x = self.x0 + self.drift * tt + (np.sin(np.outer(psi, self._ke)) - self._se) @ self._ce
-        y = self.y0 + (np.sin(np.outer(psi, self._ko)) - self._so) @ self._co
+        # the series summed term by term in order (``combine``), not by the BLAS: the same
+        # bits on every processor
+        x = self.x0 + self.drift * tt + combine((np.sin(np.outer(psi, self._ke))
+                                                 - self._se).T, self._ce)
+        y = self.y0 + combine((np.sin(np.outer(psi, self._ko)) - self._so).T, self._co)
         out = {"x": x, "y": y, "theta": th, "xdot": self.C * np.cos(th),
                "ydot": self.C * np.sin(th), "thetadot": -self.a * self.omega * np.sin(psi)}
         return out

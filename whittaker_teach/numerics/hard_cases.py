@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import ChartError, ModelError
+from .portable import atan2
 
 __all__ = ["CaseResult", "run", "run_all", "CASES", "SLEDGE", "SLEIGH", "sleigh_state",
            "long_run", "stiff"]
@@ -366,7 +367,7 @@ def case5(system="sledge", quick=True):
 def _phase_error(ex, traj):
     """|psi_run - psi_exact| at the end (rad), psi the phase of theta = a cos(psi),
     unwrapped along the run (so that a drift of many periods is counted in full)."""
-    psi = np.unwrap(np.arctan2(-traj.qdot["theta"] / ex.omega, traj.q["theta"]))
+    psi = np.unwrap(atan2(-traj.qdot["theta"] / ex.omega, traj.q["theta"]))
     psi += float(ex.phase(traj.t[0])) - psi[0]
     return abs(float(psi[-1] - ex.phase(traj.t[-1])))
 

@@ -33,6 +33,7 @@ import numpy as np
 
 from ..errors import ModelError
 from . import codegen
+from .portable import matmul_stack, solve, solve_stack
 from .results import CoordDict, Trajectory
 
 __all__ = ["simulate_dla", "dla_steps", "MAX_ENERGY_ERROR"]
@@ -65,7 +66,7 @@ def dla_steps(m, q0, p0, dt, N, P):
     qa, comp = q0.tolist(), [0.0] * n
     pa = p0.tolist()
     M0, b0 = _legendre(m, q0, P)
-    d = (dt * np.linalg.solve(M0, p0 - b0)).tolist()
+    d = [dt * v for v in solve(M0, (p0 - b0).tolist())]     # in Python floats: portable
     for k in range(N):
         u = d + lam
         for _ in range(NEWTON_MAXITER):
@@ -73,11 +74,11 @@ def dla_steps(m, q0, p0, dt, N, P):
             J = jac(*qa, *u, *pa, dt, *P)
             nres += 1
             try:
-                du = np.linalg.solve(np.array(J, dtype=float), -np.array(F, dtype=float))
+                du = solve(J, [-float(e) for e in F])
             except np.linalg.LinAlgError:
                 raise ModelError(f"DLA step {k} (t offset {k * dt:.6g}): the Newton matrix "
                                  "is singular; reduce dt") from None
-            u = (np.array(u) + du).tolist()
+            u = [a + b for a, b in zip(u, du)]
             if all(abs(e) <= NEWTON_TOL * (abs(x) + dt) for e, x in zip(du[:n], u[:n])):
                 break
         else:
@@ -118,12 +119,12 @@ def _velocities(m, Q, Pm, P):
     cols = [Q[:, i] for i in range(m.n)]
     Mq, bq = m.legendre(*cols, *P)
     M, b = _stack(Mq, N), _stack(bq, N)
-    v = np.linalg.solve(M, (Pm - b)[..., None])[..., 0]
+    v = solve_stack(M, Pm - b)                 # elementwise elimination: portable
     if m.g:
         A = _stack(m.rows(*cols, *P), N)
-        MinvAT = np.linalg.solve(M, np.swapaxes(A, 1, 2))
-        S = A @ MinvAT
-        corr = MinvAT @ np.linalg.solve(S, (A @ v[..., None]))
+        MinvAT = solve_stack(M, np.swapaxes(A, 1, 2))
+        S = matmul_stack(A, MinvAT)
+        corr = matmul_stack(MinvAT, solve_stack(S, matmul_stack(A, v[..., None])))
         v = v - corr[..., 0]
     return v
 

@@ -17,9 +17,10 @@ from __future__ import annotations
 import warnings
 
 import numpy as np
-from scipy.integrate import DOP853, solve_ivp
+from scipy.integrate import solve_ivp
 
 from ..errors import ModelError
+from .portable import PORTABLE, PortableDOP853, combine
 
 __all__ = ["solve", "as_fun", "roots_within_steps", "ARITHMETIC", "TightDOP853", "TIGHT"]
 
@@ -27,7 +28,7 @@ __all__ = ["solve", "as_fun", "roots_within_steps", "ARITHMETIC", "TightDOP853",
 TIGHT = "DOP853-tight"
 
 
-class TightDOP853(DOP853):
+class TightDOP853(PortableDOP853):
     """scipy's DOP853 with ``rtol`` below scipy's floor of 100 machine epsilons.
 
     scipy raises any rtol below 2.2e-14 to 2.2e-14; this subclass starts
@@ -96,8 +97,9 @@ def solve(rhs, jac, span, y0, p, method, rtol, atol, *, what, events=None, dense
         kw["jac"] = jac_fun or as_jac(jac, p)
     with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
         # an infinite trial value (rejected step) makes scipy's error estimate inf - inf
-        sol = solve_ivp(fun, span, y0, method=TightDOP853 if method == TIGHT else method,
-                        rtol=rtol, atol=atol, events=events,
+        # the explicit methods in their portable form (the same bits on every processor)
+        cls = TightDOP853 if method == TIGHT else PORTABLE.get(method, method)
+        sol = solve_ivp(fun, span, y0, method=cls, rtol=rtol, atol=atol, events=events,
                         dense_output=dense, t_eval=t_eval, max_step=max_step, **kw)
     if sol.status == -1:
         where = sol.t[-1] if len(sol.t) else span[0]
@@ -156,7 +158,7 @@ def roots_within_steps(sol, g, first=False):
     tt = (mid[:, None] + half[:, None] * _X[None, :])
     with np.errstate(all="ignore"):
         vals = np.asarray(g(tt.ravel(), dense(tt.ravel())), dtype=float).reshape(tt.shape)
-        coef = vals @ _T.T * (2.0 / NODES)
+        coef = np.array([combine(vals.T, row) for row in _T]).T * (2.0 / NODES)
     coef[:, 0] /= 2
     tail = np.sum(np.abs(coef[:, 1:]), axis=1)
     maybe = ~(np.abs(coef[:, 0]) > 1.01 * tail) | ~np.isfinite(tail)
