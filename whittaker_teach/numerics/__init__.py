@@ -14,6 +14,7 @@ and ``ivp`` integrates; nothing calls back into an entry:
 ``validate``                every check of the numerical input (ModelError naming the mistake)
 ``codegen``                 the compiled models: equations as Python functions, initial states
 ``ivp``                     one call of scipy's ``solve_ivp``; zeros inside steps
+``portable``                arithmetic with the same bits on every processor: RK steps, solves
 ``results``                 what a simulation returns: ``Trajectory``, ``Path``, ``Choice``
 ``work_precision``          speed against error: ``python -m whittaker_teach bench numerics``
 ``hard_cases``              the hard cases, each run and judged
@@ -22,7 +23,8 @@ and ``ivp`` integrates; nothing calls back into an entry:
 
 Imports run one way: ``scene`` -> (``exact``, ``validate``, ``results``);
 entries -> (``validate``, ``codegen``, ``ivp``, ``results``); ``time_model`` ->
-``integrators`` for ``method="DLA"``.  No circles (tested).  A call of
+``integrators`` for ``method="DLA"``; ``portable`` is a leaf (it imports nothing of the
+package) used by ``ivp``, ``codegen``, ``integrators`` and ``exact``.  No circles (tested).  A call of
 ``system.simulate`` crosses from one module to another five times
 (``scripts/trace_numerics.py`` counts them; tested).  Importing this package imports none of them (nor numpy or
 scipy), but it checks that they are installed: they are the ``[numerics]`` extra
