@@ -23,11 +23,11 @@ and ``ivp`` integrates; nothing calls back into an entry:
 
 Imports run one way: ``scene`` -> (``exact``, ``validate``, ``results``);
 entries -> (``validate``, ``codegen``, ``ivp``, ``results``); ``time_model`` ->
-``integrators`` for ``method="DLA"``; ``portable`` is a leaf (it imports nothing of the
-package) used by ``ivp``, ``codegen``, ``integrators`` and ``exact``.  No circles (tested).  A call of
-``system.simulate`` crosses from one module to another five times
-(``scripts/trace_numerics.py`` counts them; tested).  Importing this package imports none of them (nor numpy or
-scipy), but it checks that they are installed: they are the ``[numerics]`` extra
+``integrators`` for ``method="DLA"``; ``portable`` is a leaf (it imports nothing of
+the package) used by ``ivp``, ``codegen``, ``integrators`` and ``exact``.  No circles
+(tested).  A call of ``system.simulate`` crosses from one module to another five times
+(``scripts/trace_numerics.py`` counts them; tested).  Importing this package imports
+none of them (nor numpy or scipy), but it checks that they are installed: they are the ``[numerics]`` extra
 (``pip install "whittaker-teach[numerics]"``), which the symbolic core does not
 need and the in-browser site (Pyodide) does not have. Without them every
 numerics entry point (``simulate``, ``examples.sledge_exact``,

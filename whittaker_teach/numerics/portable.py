@@ -378,12 +378,13 @@ def atan2(y, x):
 
 
 def numpy_functions():
-    """A namespace for ``lambdify(..., modules=[numpy_functions(), "numpy"])`` (with
-    :class:`PortablePrinter`): the functions whose numpy versions depend on the processor,
-    taken from ``math`` element by element (sin and cos too, which numpy takes from the C
-    library today: the same values as the compiled scalar functions, by construction)."""
-    names = ("exp", "log", "sin", "cos", "tan", "atan", "asin", "acos", "sinh", "cosh", "tanh", "asinh",
-             "acosh", "atanh", "expm1", "log1p", "log10", "log2")
+    """A namespace for ``lambdify(..., modules=[numpy_functions(), "numpy"])`` with the
+    printer of ``codegen._lambdify(..., "numpy")``: the functions whose numpy versions
+    depend on the processor, taken from ``math`` element by element (sin and cos too,
+    which numpy takes from the C library today: the same values as the compiled scalar
+    functions, by construction)."""
+    names = ("exp", "log", "sin", "cos", "tan", "atan", "asin", "acos", "sinh", "cosh",
+             "tanh", "asinh", "acosh", "atanh", "expm1", "log1p", "log10", "log2")
     out = {f"_pt_{n}": _elementwise(getattr(math, n)) for n in names}
     out["_pt_atan2"] = atan2
     out["_pt_power"] = power
