@@ -519,6 +519,7 @@ def _tex_to_unicode(tex):
     s = re.sub(r"\\(mathrm|text)\{([^{}]*)\}", r"\2", s)
     s = re.sub(r"\\frac\{([^{}]*)\}\{([^{}]*)\}", r"\1/\2", s)
     s = re.sub(r"\\(" + _FUNCTIONS + r")(?![A-Za-z])\s*(?=(.?))", _function_name, s)
+    s = re.sub(r"(_\\?[A-Za-z]+)(?=\\dot)", r"\1 ", s)     # q_ε q̇_ε: two symbols, apart
     for a, b in _UNI:           # a letter after a control word is part of another word
         s = re.sub(re.escape(a) + (r"(?![A-Za-z])" if a[-1].isalpha() else ""), b, s)
     for name, mark in _COMB.items():
@@ -541,6 +542,8 @@ def text_unicode(text: str) -> str:
     '∂Ω/∂q̇_ε and L̃'
     >>> text_unicode(r"$\\dot x\\tan\\theta = -C\\sin\\theta$, $F'(\\theta)\\,F$, $J\\cos^2\\theta$")
     "ẋ tan θ = -C sin θ, F'(θ) F, J cos²θ"
+    >>> text_unicode(r"$\\Omega_{\\dot q_\\varepsilon\\dot q_\\varepsilon}$")
+    'Ω_(q̇_ε q̇_ε)'
     """
     return re.sub(r"\$([^$]+)\$", lambda m: _tex_to_unicode(m.group(1)), text)
 
