@@ -8,7 +8,8 @@ The sledge of chapter 7 (a = 0.3, phi = 0.3, m = J = k = C = 1, 10 periods), the
 largest error relative to each component's scale against the closed form.  For
 each formulation, DOP853 runs at scipy's smallest rtol (2.3e-14) and below it
 ("DOP853-tight"); then the steps of each run are replayed with the same
-Runge-Kutta tableau three ways: in double precision (reproduces the run), in
+Runge-Kutta tableau three ways: in double precision (the run's arithmetic: the
+package's stepper, ``numerics.portable``, sums the stages in the same order), in
 double precision with the state update summed with Kahan's compensation, and in
 x87 long double (64-bit mantissa, eps 1.1e-19).  At the same steps the
 truncation error is the same in all three: what long double removes is
@@ -24,6 +25,7 @@ from scipy.integrate._ivp import dop853_coefficients as dc
 
 import whittaker_teach as wt
 from whittaker_teach.numerics.ivp import TightDOP853
+from whittaker_teach.numerics.portable import PortableDOP853, combine
 from whittaker_teach.numerics.work_precision import _scales
 
 P = {"m": 1.0, "J": 1.0, "k": 1.0}
@@ -57,8 +59,8 @@ def replay(form, ts, u0, dtype, kahan=False):
         t, h = tt[n], tt[n + 1] - tt[n]
         K[0] = f(t, y)
         for s in range(1, 12):
-            K[s] = f(t + C[s] * h, y + K[:s].T @ A[s, :s] * h)
-        inc = h * (K.T @ B)
+            K[s] = f(t + C[s] * h, y + combine(K[:s], A[s, :s]) * h)   # the run's order
+        inc = h * combine(K, B)
         if kahan:
             z = inc - comp
             new = y + z
@@ -92,7 +94,7 @@ def main():
         for method, rtol in (("DOP853", 2.3e-14), ("DOP853-tight", 2e-15),
                              ("DOP853-tight", 1e-15)):
             sol = solve_ivp(rhs(form, float), (0, T), u0, rtol=rtol, atol=1e-20,
-                            method=TightDOP853 if method != "DOP853" else method)
+                            method=TightDOP853 if method != "DOP853" else PortableDOP853)
             print(f"  {method:12s} rtol {rtol:.1e}: {len(sol.t) - 1} steps, nfev {sol.nfev}")
             for label, dtype, kahan in (("double", np.float64, False),
                                         ("double, Kahan update", np.float64, True),
