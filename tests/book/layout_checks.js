@@ -122,6 +122,22 @@
     }
   }
 
+  // --- punctuation after in-line maths on the formula's line, never starting the next
+  // (wt-site.js glues them; a line that starts with the full stop of a sentence ending
+  // in a formula is what a narrow screen shows otherwise)
+  math.orphans = [];
+  for (const c of main.querySelectorAll("mjx-container:not([display='true'])")) {
+    const p = c.parentElement;
+    const box = p && p.matches("span.math") && p.childNodes.length === 1 ? p : c;
+    const next = box.nextSibling;
+    if (!next || next.nodeType !== 3 || !/^[.,;:!?)]/.test(next.data)) continue;
+    const range = document.createRange();
+    range.setStart(next, 0); range.setEnd(next, 1);
+    const q = range.getBoundingClientRect(), f = c.getBoundingClientRect();
+    if (q.height > 0 && f.height > 0 && (q.top + q.bottom) / 2 > f.bottom)
+      math.orphans.push(`${label(c)} then "${next.data.slice(0, 12)}"`);
+  }
+
   // --- text outputs and tables: wrapped or scrolling, never cut
   const text = { checked: 0, cut: [] };
   for (const el of main.querySelectorAll("pre, table, .cell_output .output")) {

@@ -491,6 +491,9 @@ def _layout_problems(v: PageVisit) -> list[str]:
         problems.append(_listed("formulas cut off (no scroll bar reaches them)", layout["math"]["cut"]))
     if layout["math"]["vertical"]:
         problems.append(_listed("equations with a vertical scroll bar", layout["math"]["vertical"]))
+    if layout["math"]["orphans"]:
+        problems.append(_listed("lines that start with the punctuation after in-line maths",
+                                layout["math"]["orphans"]))
     if layout["text"]["cut"]:
         problems.append(_listed("text outputs or tables cut off", layout["text"]["cut"]))
     if layout["rawTex"]:

@@ -5,6 +5,9 @@
 // shades the edges beyond which more of it lies), a keyboard focus stop
 // (arrow keys scroll it) and an accessible label. The marks follow every
 // change of the box's size: window resized, a fold opened.
+// In-line maths is also glued to the punctuation that touches it (a `.` or `,`
+// after it, a `(` before it), so that a narrow screen never starts a line with
+// the full stop of a sentence that ends in a formula.
 (function () {
   "use strict";
 
@@ -47,12 +50,46 @@
     }
   }
 
+  var AFTER = /^[.,;:!?)\]\u2019\u201d]+/, BEFORE = /[(\[\u2018\u201c]+$/;
+
+  function glue(m) {
+    // the formula's own box: MyST's span.math around MathJax's container, if there is one
+    var p = m.parentNode;
+    var c = p && p.nodeName === "SPAN" && p.classList.contains("math") &&
+      p.childNodes.length === 1 ? p : m;
+    var next = c.nextSibling, prev = c.previousSibling;
+    var tail = next && next.nodeType === 3 ? next.data.match(AFTER) : null;
+    var head = prev && prev.nodeType === 3 ? prev.data.match(BEFORE) : null;
+    if (!tail && !head) return;
+    var span = document.createElement("span");
+    span.className = "wt-nobreak";
+    c.parentNode.insertBefore(span, c);
+    if (head) {
+      prev.data = prev.data.slice(0, prev.data.length - head[0].length);
+      span.appendChild(document.createTextNode(head[0]));
+    }
+    span.appendChild(c);
+    if (tail) {
+      next.data = next.data.slice(tail[0].length);
+      span.appendChild(document.createTextNode(tail[0]));
+    }
+  }
+
+  function keepPunctuation() {
+    document.querySelectorAll("mjx-container:not([display='true'])").forEach(glue);
+  }
+
+  function afterTypeset() {
+    keepPunctuation();
+    markAll();
+  }
+
   function whenTypeset() {
     var mj = window.MathJax;
     if (mj && mj.startup && mj.startup.promise) {
-      mj.startup.promise.then(markAll);
+      mj.startup.promise.then(afterTypeset);
     } else {
-      markAll();
+      afterTypeset();
     }
   }
 
