@@ -463,73 +463,15 @@ _RAW = {name: getattr(libmp, "mpf_" + name) for name in (
     "sin", "cos", "tan", "exp", "log", "atan", "sinh", "cosh", "tanh")}
 
 
-def _raw(e, memo, prec):
-    """The raw mpf value (a tuple) of ``e`` at the point of ``memo`` (raw values, shared
-    by the checks at that point); :class:`_NotRaw` where :func:`evaluate` must do it."""
-    known = _IDS.get(id(e))
-    if known is not None and known[0] is e:
-        e = known[1]
-    v = memo.get(e)
-    if v is None:
-        v = memo[e] = _FAIL
-        try:
-            v = _raw_compute(e, memo, prec)
-        except _NotRaw:
-            memo[e] = _NOT_RAW
-            raise
-        except RecursionError:
-            raise Unevaluable("an expression too deeply nested to evaluate")
-        memo[e] = v
-    elif v is _FAIL:
-        raise ValueError("this subexpression failed to evaluate at this point")
-    elif v is _NOT_RAW:
-        raise _NotRaw
-    return v
-
-
-def _raw_compute(e, memo, prec):
-    if e.is_Add or e.is_Mul:
-        op = mpf_add if e.is_Add else mpf_mul
-        args = iter(e.args)
-        out = _raw(next(args), memo, prec)
-        for a in args:
-            out = op(out, _raw(a, memo, prec), prec, "n")
-        return out
-    if e.is_Pow:
-        b, x = _raw(e.base, memo, prec), e.exp
-        if x.is_Integer:
-            return mpf_pow_int(b, int(x), prec, "n")
-        if x.is_Rational and x.q == 2:
-            try:
-                return mpf_pow_int(mpf_sqrt(b, prec, "n"), int(x.p), prec, "n")
-            except ComplexResult:
-                raise _NotRaw
-        raise _NotRaw
-    if e.is_Symbol:
-        raise KeyError(f"no sample value for {e}")
-    if e.is_Number or e.is_NumberSymbol:
-        v = _number(e)
-        if not isinstance(v, mpmath.mpf):
-            raise _NotRaw
-        return v._mpf_
-    if isinstance(e, sp.Function) and len(e.args) == 1:
-        fn = _RAW.get(e.func.__name__)
-        if fn is not None:
-            try:
-                return fn(_raw(e.args[0], memo, prec), prec, "n")
-            except ComplexResult:
-                raise _NotRaw
-    raise _NotRaw
-
-
 # The first ``POINTS`` points of a sampler are evaluated together: each node is visited
 # once and its values at all of them are computed in one loop (a "vector", a list with
 # one raw value per point), instead of one visit, one memo look-up and one type dispatch
-# per node and point.  The operations and their order are those of ``_raw``, so the bits
-# are the same.  A point where a node cannot be done raw holds a marker instead of a
-# value: ``_NOT_RAW`` (that point's expression goes to ``evaluate``, as with ``_raw``) or
-# ``_FAIL`` (a pole or a domain error there: the point is skipped, as with ``_raw``);
-# a vector with a marker is a ``_Marked`` list, so that a clean one is checked by type.
+# per node and point.  The operations and their order are those of mpf arithmetic, so the
+# bits are ``evaluate``'s.  A point where a node cannot be done raw holds a marker instead
+# of a value: ``_NOT_RAW`` (that point's expression goes to ``evaluate``) or ``_FAIL`` (a
+# pole or a domain error there: the point is skipped); a vector with a marker is a
+# ``_Marked`` list, so that a clean one is checked by type.  A single point (the points
+# after the block, when a check needs more) is a block of width 1 (:func:`_raw`).
 class _Marked(list):
     """A vector with at least one marker (``_FAIL`` or ``_NOT_RAW``) among its values."""
 
@@ -620,6 +562,33 @@ def _vector_compute(e, memo, prec, width):
     return _Marked([_NOT_RAW] * width)
 
 
+def _block_of(raws):
+    """The block memo of the points whose raw values are ``raws`` ({symbol: raw value or
+    ``_NOT_RAW``} each); None when they do not all give the same symbols."""
+    keys = raws[0].keys()
+    if not all(r.keys() == keys for r in raws):
+        return None
+    block = {_WIDTH: len(raws)}
+    for sym in keys:
+        vec = [r[sym] for r in raws]
+        block[sym] = _Marked(vec) if _NOT_RAW in vec else vec
+    return block
+
+
+def _raw(e, memo, prec):
+    """The raw mpf value (a tuple) of ``e`` at one point: ``memo`` is that point's block of
+    width 1 (:func:`_block_of`), or its raw values {symbol: raw value}, made into one in
+    place; :class:`_NotRaw` where :func:`evaluate` must do it, ValueError at a pole."""
+    if _WIDTH not in memo:
+        memo.update(_block_of([dict(memo)]))
+    v = _vector(e, memo, prec)[0]
+    if v is _NOT_RAW:
+        raise _NotRaw
+    if v is _FAIL:
+        raise ValueError("this subexpression failed to evaluate at this point")
+    return v
+
+
 def _value(e, memo, raw, prec):
     """The value of ``e`` at a point: from raw arithmetic when it can, else
     :func:`evaluate` (the memo ``memo`` of mpf values)."""
@@ -632,10 +601,11 @@ def _value(e, memo, raw, prec):
 class _Points:
     """Random admissible points of one sampler and seed, drawn on demand, each with
     the memo of the values computed there (shared by every check that uses them), as
-    mpf objects (:func:`evaluate`) and as raw mpf values (:func:`_raw`)."""
+    mpf objects (:func:`evaluate`) and as raw mpf values (:func:`_vector`, :func:`_raw`)."""
 
     def __init__(self, sample, seed):
         self.sample, self.rng, self.points, self.raws = sample, random.Random(seed), [], []
+        self.singles = []
 
     def __getitem__(self, i):
         while len(self.points) <= i:
@@ -647,22 +617,18 @@ class _Points:
         return self.points[i]
 
     def raw(self, i):
+        """The block of width 1 of point ``i`` (:func:`_raw`)."""
         self[i]
-        return self.raws[i]
+        while len(self.singles) <= i:
+            self.singles.append(_block_of([self.raws[len(self.singles)]]))
+        return self.singles[i]
 
     def block(self):
         """The memo of the vectors at points 0 .. POINTS - 1 (:func:`_vector`), made with
         the sampled values; None when the points do not all give the same symbols."""
         if not hasattr(self, "_block"):
             self[POINTS - 1]
-            raws = self.raws[:POINTS]
-            keys = raws[0].keys()
-            self._block = None
-            if all(r.keys() == keys for r in raws):
-                self._block = {_WIDTH: POINTS}
-                for s in keys:
-                    vec = [r[s] for r in raws]
-                    self._block[s] = _Marked(vec) if _NOT_RAW in vec else vec
+            self._block = _block_of(self.raws[:POINTS])
         return self._block
 
 

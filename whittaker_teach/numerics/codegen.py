@@ -47,7 +47,7 @@ def _lambdify(args, exprs, module="math"):
     """``lambdify`` with CSE; ``args`` a flat list of symbols, ``exprs`` a list (or matrix).
 
     ``"math"``: a function of floats.  ``"numpy"``: a function of arrays, printed by
-    :class:`PortablePrinter`, whose values are the same on every processor."""
+    :func:`_portable_printer`, whose values are the same on every processor."""
     if module == "numpy":
         from .portable import numpy_functions
         return sp.lambdify(args, exprs, modules=[numpy_functions(), "numpy"], cse=True,
@@ -62,8 +62,10 @@ def _portable_printer():
     square roots and reciprocals stay numpy's (exactly rounded everywhere)."""
     from sympy.printing.numpy import NumPyPrinter
 
+    from .portable import FUNCTIONS
+
     class PortablePrinter(NumPyPrinter):
-        _kf = {**NumPyPrinter._kf, **{f: f"_pt_{m}" for f, m in _PORTABLE_NAMES.items()}}
+        _kf = {**NumPyPrinter._kf, **{f: f"_pt_{f}" for f in FUNCTIONS + ("atan2",)}}
 
         def _print_Pow(self, expr, rational=False):
             if expr.exp == sp.S.Half:
@@ -73,13 +75,6 @@ def _portable_printer():
             return f"_pt_power({self._print(expr.base)}, {float(expr.exp)!r})"
     return PortablePrinter({"fully_qualified_modules": False, "inline": True,
                             "allow_unknown_functions": True, "user_functions": {}})
-
-
-# SymPy's function names -> math's (the functions of :func:`.portable.numpy_functions`)
-_PORTABLE_NAMES = {"exp": "exp", "log": "log", "sin": "sin", "cos": "cos", "tan": "tan",
-                   "atan": "atan", "asin": "asin", "acos": "acos", "sinh": "sinh",
-                   "cosh": "cosh", "tanh": "tanh", "asinh": "asinh", "acosh": "acosh",
-                   "atanh": "atanh", "atan2": "atan2"}
 
 
 def trig_as_sin_cos(expr):

@@ -38,7 +38,8 @@ from scipy.integrate import DOP853, RK23, RK45
 from scipy.integrate._ivp.rk import Dop853DenseOutput, RkDenseOutput
 
 __all__ = ["solve", "solve_stack", "dot", "matmul_stack", "combine", "rms", "PortableDOP853",
-           "PortableRK45", "PortableRK23", "PORTABLE", "numpy_functions", "power", "atan2"]
+           "PortableRK45", "PortableRK23", "PORTABLE", "numpy_functions", "FUNCTIONS",
+           "power", "atan2"]
 
 
 # ----------------------------------------------------------------- linear algebra
@@ -169,7 +170,7 @@ _CODE = {}
 def _step_function(cls, n):
     """``step(fun, t, h, y, f, array) -> (y_new list, f_new, stages, errors)`` for the
     tableau of ``cls`` and n coordinates, generated once."""
-    key = ("step", cls.__name__, n)
+    key = ("step", id(cls.A), n)          # one per tableau (TightDOP853 shares DOP853's)
     if key not in _CODE:
         S = cls.n_stages
         lines = ["def step(fun, t, h, y, f, array):",
@@ -282,7 +283,7 @@ class _Portable:
         return True, None
 
     def _dense_output_impl(self):
-        sums = _sums_function([p for p in self.P.T], self.n, "Q " + type(self).__name__)
+        sums = _sums_function([p for p in self.P.T], self.n, ("Q", id(self.A)))
         return _Dense(self.t_old, self.t, self.y_old, np.array(sums(self._stages)).T)
 
 
@@ -325,11 +326,11 @@ class PortableDOP853(_Portable, DOP853):
         return abs(h) * n5 / math.sqrt((n5 + 0.01 * n3) * len(scale))
 
     def _dense_output_impl(self):
-        n, h, name = self.n, float(self.h_previous), type(self).__name__
+        n, h, name = self.n, float(self.h_previous), id(self.A)
         K = list(self._stages)
         yl = self.y_old.tolist()
         for s, (a, c) in enumerate(zip(self.A_EXTRA, self.C_EXTRA), start=self.n_stages + 1):
-            (dy,) = _sums_function([a[:s]], n, f"extra {s} {name}")(K)
+            (dy,) = _sums_function([a[:s]], n, ("extra", s, name))(K)
             K.append(self.fun(self.t_old + c * h,
                               np.array([u + d * h for u, d in zip(yl, dy)])).tolist())
         F = np.empty((len(self.D) + 3, n))
@@ -337,7 +338,7 @@ class PortableDOP853(_Portable, DOP853):
         F[0] = delta_y
         F[1] = h * f_old - delta_y
         F[2] = 2 * delta_y - h * (self.f + f_old)
-        F[3:] = h * np.array(_sums_function(list(self.D), n, f"D {name}")(K))
+        F[3:] = h * np.array(_sums_function(list(self.D), n, ("D", name))(K))
         return Dop853DenseOutput(self.t_old, self.t, self.y_old, F)
 
 
@@ -377,15 +378,19 @@ def atan2(y, x):
     return _ATAN2(np.asarray(y, dtype=float), np.asarray(x, dtype=float)).astype(float)
 
 
+#: the functions (SymPy's names, which are also math's) that the array functions take from
+#: ``math``; atan2 and powers besides (:func:`atan2`, :func:`power`)
+FUNCTIONS = ("exp", "log", "sin", "cos", "tan", "atan", "asin", "acos", "sinh", "cosh",
+             "tanh", "asinh", "acosh", "atanh")
+
+
 def numpy_functions():
     """A namespace for ``lambdify(..., modules=[numpy_functions(), "numpy"])`` with the
     printer of ``codegen._lambdify(..., "numpy")``: the functions whose numpy versions
     depend on the processor, taken from ``math`` element by element (sin and cos too,
     which numpy takes from the C library today: the same values as the compiled scalar
     functions, by construction)."""
-    names = ("exp", "log", "sin", "cos", "tan", "atan", "asin", "acos", "sinh", "cosh",
-             "tanh", "asinh", "acosh", "atanh", "expm1", "log1p", "log10", "log2")
-    out = {f"_pt_{n}": _elementwise(getattr(math, n)) for n in names}
+    out = {f"_pt_{n}": _elementwise(getattr(math, n)) for n in FUNCTIONS}
     out["_pt_atan2"] = atan2
     out["_pt_power"] = power
     return out
