@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The system programs the site tests and the PDF need, from Debian:
 #   chromium       headless browser (browser test, `make pdf`), at /usr/bin/chromium
-#   poppler-utils  pdftotext / pdfimages (the PDF test)
+#   poppler-utils  pdftotext / pdfimages / pdffonts (the PDF test)
+#   fonts-noto-cjk the glossary's and references' Chinese in the PDF (embedded by Chromium)
+#   bubblewrap     bwrap, the sandbox of each graded submission (`grade`)
 # Installed with apt-get when running as root (or with passwordless sudo);
 # otherwise the script fails and says what to install.
 set -euo pipefail
@@ -13,6 +15,8 @@ else
     [[ -x /usr/bin/chromium ]] || command -v chromium >/dev/null 2>&1 || missing+=(chromium)
 fi
 command -v pdftotext >/dev/null 2>&1 && command -v pdfimages >/dev/null 2>&1 || missing+=(poppler-utils)
+fc-list :lang=zh family 2>/dev/null | grep -q "Noto Sans CJK" || missing+=(fonts-noto-cjk)
+command -v bwrap >/dev/null 2>&1 || missing+=(bubblewrap)
 
 if ((${#missing[@]} == 0)); then
     exit 0
