@@ -15,7 +15,8 @@ from __future__ import annotations
 
 import sympy as sp
 
-from .steps import Step, eq, notation
+from .reading import check_reading, nielsen_forms, total_derivative_form
+from .steps import Step, eq, notation, partial
 from .verify import check_identity
 
 __all__ = ["nielsen", "nielsen_steps"]
@@ -40,8 +41,6 @@ def nielsen(red):
 
 def nielsen_steps(red):
     """Steps (2.1)-(2.4), each identity checked for this system."""
-    from .reading import check_reading, nielsen_forms, total_derivative_form
-    from .steps import partial
     S, Ls, smp = red.system, red._Lstar, red._sample
     n = nielsen(red)
     dL, nus = n["2.1"], red._nus

@@ -291,8 +291,7 @@ def nielsen_forms(red):
     """(2.4), one per q_nu: d(dL*/dq_eps)/dq'_nu - 2 dL*/dq_nu
     - sum_beta (dL/dqdot_beta)* (d(dqdot*_beta/dq_eps)/dq'_nu - 2 dqdot*_beta/dq_nu),
     each piece tidied."""
-    from .nielsen import nielsen
-    dL = nielsen(red)["2.1"]
+    dL = red._D(red._Lstar)             # (2.1), the object nielsen.nielsen gives (one memo)
     out = []
     for c in red._nus:
         S, Ls, qp, q, x, pr = _pieces(red, c)

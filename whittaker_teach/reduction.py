@@ -499,8 +499,9 @@ class Reduction:
         return Step("1.26a", r"used in (1.26): $(\partial L/\partial\dot q_{\varepsilon+\beta})^*$,"
                     r" $\partial L/\partial\dot q_{\varepsilon+\beta}$ in $q'$, $q$ and $h$",
                     [eq(a, b) for a, b in zip(names, forms)], check_reading(
-                        "1.26a", r"the form shown is $\partial\tilde L/\partial\dot "
-                        r"q_{\varepsilon+\beta}$ under (1.5) and (1.12)", forms, self._Pstar,
+                        "1.26a", r"the form shown is $\partial L/\partial\dot "
+                        r"q_{\varepsilon+\beta}$, differentiated first, then with the "
+                        "constraints (1.3), (1.5) and (1.12) substituted", forms, self._Pstar,
                         self))
 
     def _equation_steps(self):
@@ -624,13 +625,9 @@ class Reduction:
         rtol); ``path.explain()`` says which and why
         (:mod:`whittaker_teach.numerics.scene`).
         """
-        if options.get("tol") is not None:      # the package picks the model and method
-            from .numerics.scene import simulate_within
-            return simulate_within(self, q0, qp0, h, span, params, method=method, rtol=rtol,
-                                   atol=atol, **options)
-        options.pop("tol", None)
-        from .numerics.reduced_model import simulate
-        return simulate(self, q0, qp0, h, span, params, method, rtol, atol, **options)
+        from .backends import provided      # numerics registers it: the core imports none
+        return provided("simulate")(self, q0, qp0, h, span, params, method, rtol, atol,
+                                    **options)
 
 
 LSTAR = notation("L*", "L^{*}")

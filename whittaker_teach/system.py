@@ -455,12 +455,14 @@ class ChaplyginSystem:
                               "constraints)",
                               [eq(self.qd[c], phi) for c, phi in
                                zip(self.dependent_coordinates, self._phi.values())]))
-        steps.append(Step("1.2", r"$\tilde L$: the Lagrangian with the constraints substituted",
+        steps.append(Step("1.2", r"the Lagrangian with the constraints substituted, "
+                          r"$\tilde L$ of (1.2)",
                           [eq(sp.Symbol("Ltilde"), self._Ltilde)], dep_q and check_zero(
             "1.2", r"the terms of (1.2) in $\partial\varphi/\partial q_{\varepsilon+\beta}$ and "
             r"$\partial\tilde L/\partial q_{\varepsilon+\beta}$ vanish (Chaplygin type)",
             [self._d(phi, s) for phi in self._phi.values() for s in dep_q]
-            + [self._d(self._Ltilde, s) for s in dep_q], self._sample_time) or None))
+            + [self._d(self._Ltilde, s) for s in dep_q], self._sample_time) or None,
+            tag=r"[$\tilde L$]"))
         if not self.is_holonomic:
             free = ", ".join(f"${sp.latex(self.q[c])}$" for c in self.independent_coordinates)
             steps.append(Step("1.3", f"Chaplygin type: each constraint depends on {free} and "
@@ -557,10 +559,6 @@ class ChaplyginSystem:
         checked rtol); ``traj.explain()`` says which and why
         (:mod:`whittaker_teach.numerics.scene`).
         """
-        if options.get("tol") is not None:      # the package picks the model and method
-            from .numerics.scene import simulate_within
-            return simulate_within(self, q0, qdot0, t_span, params, method=method, rtol=rtol,
-                                   atol=atol, **options)
-        options.pop("tol", None)
-        from .numerics.time_model import simulate
-        return simulate(self, q0, qdot0, t_span, params, method, rtol, atol, **options)
+        from .backends import provided      # numerics registers it: the core imports none
+        return provided("simulate")(self, q0, qdot0, t_span, params, method, rtol, atol,
+                                    **options)

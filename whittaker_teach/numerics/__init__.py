@@ -25,7 +25,10 @@ Imports run one way: ``scene`` -> (``exact``, ``validate``, ``results``);
 entries -> (``validate``, ``codegen``, ``ivp``, ``results``); ``time_model`` ->
 ``integrators`` for ``method="DLA"``; ``portable`` is a leaf (it imports nothing of
 the package) used by ``ivp``, ``codegen``, ``integrators`` and ``exact``.  No circles
-(tested).  A call of ``system.simulate`` crosses from one module to another five times
+(tested).  Numerics builds on the symbolic core and the core imports none of it:
+``simulate`` below is registered with :mod:`whittaker_teach.backends`, where
+``ChaplyginSystem.simulate`` and ``Reduction.simulate`` find it
+(``tests/unit/test_import_graph.py``).  A call of ``system.simulate`` crosses from one module to another five times
 (``scripts/trace_numerics.py`` counts them; tested).  Importing this package imports
 none of them (nor numpy or scipy), but it checks that they are installed: they are the ``[numerics]`` extra
 (``pip install "whittaker-teach[numerics]"``), which the symbolic core does not
@@ -65,7 +68,33 @@ def require_extra(modules=EXTRA_MODULES, what="whittaker_teach.numerics"):
 
 require_extra()
 
-__all__ = ["MissingExtraError", "require_extra", "codegen", "time_model", "reduced_model",
+
+def simulate(obj, *args, **options):
+    """``ChaplyginSystem.simulate`` and ``Reduction.simulate``: the full model in t
+    (``time_model``), the reduced model (1.26) in q_eps (``reduced_model``), or with
+    ``tol=`` the model and method the package picks (``scene``).  Registered with the
+    core (:mod:`whittaker_teach.backends`), which imports nothing of numerics."""
+    from ..reduction import Reduction
+    if options.get("tol") is not None:      # the package picks the model and method
+        from .scene import simulate_within
+        *head, method, rtol, atol = args
+        return simulate_within(obj, *head, method=method, rtol=rtol, atol=atol, **options)
+    options.pop("tol", None)
+    if isinstance(obj, Reduction):
+        from .reduced_model import simulate as entry
+    else:
+        from .time_model import simulate as entry
+    return entry(obj, *args, **options)
+
+
+def _register():
+    from ..backends import register
+    register("simulate", simulate)
+
+
+_register()
+
+__all__ = ["MissingExtraError", "require_extra", "simulate", "codegen", "time_model", "reduced_model",
            "integrators", "exact", "scene",
            "work_precision", "hard_cases", "results", "validate", "figures", "ivp"]
 
