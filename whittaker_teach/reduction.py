@@ -499,9 +499,8 @@ class Reduction:
         return Step("1.26a", r"used in (1.26): $(\partial L/\partial\dot q_{\varepsilon+\beta})^*$,"
                     r" $\partial L/\partial\dot q_{\varepsilon+\beta}$ in $q'$, $q$ and $h$",
                     [eq(a, b) for a, b in zip(names, forms)], check_reading(
-                        "1.26a", r"the form shown is $\partial L/\partial\dot "
-                        r"q_{\varepsilon+\beta}$, differentiated first, then with the "
-                        "constraints (1.3), (1.5) and (1.12) substituted", forms, self._Pstar,
+                        "1.26a", r"the form shown is $\partial\tilde L/\partial\dot "
+                        r"q_{\varepsilon+\beta}$ under (1.5) and (1.12)", forms, self._Pstar,
                         self))
 
     def _equation_steps(self):

@@ -455,14 +455,12 @@ class ChaplyginSystem:
                               "constraints)",
                               [eq(self.qd[c], phi) for c, phi in
                                zip(self.dependent_coordinates, self._phi.values())]))
-        steps.append(Step("1.2", r"the Lagrangian with the constraints substituted, "
-                          r"$\tilde L$ of (1.2)",
+        steps.append(Step("1.2", r"$\tilde L$: the Lagrangian with the constraints substituted",
                           [eq(sp.Symbol("Ltilde"), self._Ltilde)], dep_q and check_zero(
             "1.2", r"the terms of (1.2) in $\partial\varphi/\partial q_{\varepsilon+\beta}$ and "
             r"$\partial\tilde L/\partial q_{\varepsilon+\beta}$ vanish (Chaplygin type)",
             [self._d(phi, s) for phi in self._phi.values() for s in dep_q]
-            + [self._d(self._Ltilde, s) for s in dep_q], self._sample_time) or None,
-            tag=r"[$\tilde L$]"))
+            + [self._d(self._Ltilde, s) for s in dep_q], self._sample_time) or None))
         if not self.is_holonomic:
             free = ", ".join(f"${sp.latex(self.q[c])}$" for c in self.independent_coordinates)
             steps.append(Step("1.3", f"Chaplygin type: each constraint depends on {free} and "
