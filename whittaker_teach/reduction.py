@@ -164,8 +164,17 @@ class Reduction:
         self._v = sp.Symbol(n + "dot", **sign)
         self._qp = {c: sp.Symbol(_name(c) + "prime") for c in self._nus}
         self._qpp = {c: sp.Symbol(_name(c) + "primeprime") for c in self._nus}
-        taken = {p.name for p in S.parameters} | S._names
-        self.h = sp.Symbol("h" if "h" not in taken else "h_E")
+        self.h = sp.Symbol("h")
+        made = [self.h, *self._qp.values(), *self._qpp.values()]
+        for s in made:
+            what = ("the parameter" if s.name in {p.name for p in S.parameters} else
+                    "the coordinate" if s.name in {_name(c) for c in S.coordinates} else
+                    "the velocity or acceleration" if s.name in S._names else None)
+            if what:
+                role = ("the energy constant h of (1.11)-(1.13)" if s is self.h else
+                        "a derivative with respect to q_eps (1.5)")
+                raise ModelError(f"{what} {s.name} has the name of a symbol the reduction "
+                                 f"makes, {role}; rename it (nothing is renamed silently)")
         x = self.independent
         self.coordinates = [sp.Function(_name(c), **_assume(c))(x) for c in self._nus]
         self._to_public = {}
@@ -312,6 +321,15 @@ class Reduction:
         """q''_nu solved from (1.26): {theta(x).diff(x, 2): expression}."""
         return {self.to_public(k): self.to_public(v)
                 for k, v in self._tidy_accelerations().items()}
+
+    @guarded("generating the numeric right-hand side")
+    def lambdify_rhs(self, modules="math"):
+        """``f(x, state, h, params)``, the reduced model as one numeric function
+        (``lambdify`` with common subexpressions): state = [q_nu..., q'_nu..., t,
+        q_dep...], result = its derivative in q_eps ((1.26), dt/dq_eps = 1/qdot_eps
+        (1.12), dq_dep/dq_eps (1.23)); see :mod:`.numeric_rhs`."""
+        from .numeric_rhs import reduction_rhs
+        return reduction_rhs(self, modules)
 
     @property
     def dependent_momenta(self):

@@ -100,10 +100,16 @@ def _check_coordinates(coordinates):
     if not coords:
         raise ModelError("coordinates is empty: a system needs at least one coordinate q_s (1.1)")
     for c in coords:
-        if not (isinstance(c, AppliedUndef) and c.args == (T,)):
+        if not (isinstance(c, AppliedUndef) and len(c.args) == 1
+                and isinstance(c.args[0], sp.Symbol) and c.args[0].name == T.name):
             raise ModelTypeError(
                 f"coordinate {c!r} is not a function of time: make coordinates with "
                 "sympy.physics.mechanics.dynamicsymbols, e.g. x, y = dynamicsymbols('x y')")
+    times = {c.args[0] for c in coords}
+    if len(times) > 1:
+        raise ModelTypeError("the coordinates are functions of different time symbols "
+                             f"{sorted(map(repr, times))} (one declared real=True?): use one "
+                             "time symbol for all of them")
     names = [_name(c) for c in coords]
     dup = sorted({n for n in names if names.count(n) > 1})
     if dup:
@@ -139,35 +145,61 @@ class ChaplyginSystem:
         L in the coordinates (``dynamicsymbols``) and their time derivatives.
     coordinates : list
         All coordinates q_s, independent and dependent, in the order to use.
-    dependent : dict, optional
+    dependent : dict or list, optional
         ``{q_dep.diff(t): phi}``: the dependent velocities (1.1), (1.3).
         Linear constraints and positively homogeneous ones of degree one
         (``a*sqrt(xdot**2 + ydot**2)``) both work.  None or {}: holonomic.
+        Also accepted: ``{q_dep.diff(t): f}`` with f (= 0, or an ``Eq``) containing
+        q_dep.diff(t), a list of ``Eq(q_dep.diff(t), phi)``, and, with
+        ``nonhol_coneqs``, the list of the dependent coordinates ``[y]``.
+    nonhol_coneqs : list, optional
+        The constraints as ``LagrangesMethod`` takes them: expressions f(q, qdot)
+        (= 0) or ``Eq``, linear or nonlinear in the velocities, solved for the
+        velocities of the coordinates named in ``dependent``
+        (:func:`~whittaker_teach.mechanics_input.solved_velocities`; a ModelError
+        when they cannot be solved, or have several solutions).  Kept for
+        :meth:`multipliers`, which uses them as written.
     name : str, optional
         A name for printing.
+
+    Float coefficients (``0.5*m*xdot**2``) are taken as the exact rationals they
+    print as (``Rational(str(f))``: 0.845 is 169/200), listed in ``rationalized``
+    ({Float: Rational}); step (1.1) says so, and its check, in ``verify()``, that each
+    rational equals its Float to the Float's precision.  Every other check is then
+    exact or to 40 digits as for any rational model.  The coordinates may be functions
+    of a time symbol declared ``real=True`` (the results use the same symbol).
     """
 
     @guarded("building the system")
-    def __init__(self, lagrangian, coordinates, dependent=None, *, name=None):
+    def __init__(self, lagrangian, coordinates, dependent=None, *, nonhol_coneqs=None,
+                 name=None):
+        from .mechanics_input import constraint_expressions, dependent_velocities
         self.name = name or "system"
         self.coordinates = _check_coordinates(coordinates)
+        self._t = self.coordinates[0].args[0]       # dynamicsymbols._t, or t real=True
         self._make_symbols()
-        dependent = {} if dependent is None else dependent
-        if not isinstance(dependent, dict):
-            raise ModelTypeError("dependent must be a dict {q.diff(t): phi(q, qdot)} of the "
-                                 f"dependent velocities (1.1), got {type(dependent).__name__}")
+        self.rationalized = {}
+        if nonhol_coneqs is not None:
+            nonhol_coneqs = [self._exact(f) for f in constraint_expressions(nonhol_coneqs)]
+        if isinstance(dependent, dict):
+            dependent = {k: self._exact(v) if isinstance(v, sp.Basic) else v
+                         for k, v in dependent.items()}
+        elif isinstance(dependent, (list, tuple)):
+            dependent = [self._exact(v) if isinstance(v, sp.Basic) else v for v in dependent]
+        dependent, self._coneqs = dependent_velocities(dependent, nonhol_coneqs,
+                                                       self.coordinates, self._t)
         dep_coords = [self._velocity_owner(key) for key in dependent]
         self.dependent_coordinates = [c for c in self.coordinates if c in dep_coords]
         self.independent_coordinates = [c for c in self.coordinates if c not in dep_coords]
         if not self.independent_coordinates:
             raise ModelError("every velocity is dependent: at least one independent "
                              "coordinate q_sigma is needed (1.1: eps = n - g >= 1)")
-        L = _require_expr(lagrangian, "the Lagrangian L")
+        L = self._exact(_require_expr(lagrangian, "the Lagrangian L"))
         self.lagrangian = L
-        self.constraints = {k.expr.diff(T): _require_expr(v, f"the constraint for {k}")
-                            for k, v in dependent.items()}
+        self.constraints = {k.expr.diff(self._t): self._exact(
+            _require_expr(v, f"the constraint for {k}")) for k, v in dependent.items()}
         self._L = self._internal(L, "the Lagrangian L")
-        self._phi = {self.q[c]: self._internal(self.constraints[c.diff(T)],
+        self._phi = {self.q[c]: self._internal(self.constraints[c.diff(self._t)],
                                                f"the constraint {_name(c)}dot = phi")
                      for c in self.dependent_coordinates}
         self._check_chaplygin()
@@ -187,6 +219,29 @@ class ChaplyginSystem:
         self._cache = {}
         self._dmemo = {}     # dag.diff's memo: shared subexpressions differentiated once
 
+    @classmethod
+    def from_lagranges_method(cls, lm, dependent=None, name=None):
+        """The system of a ``sympy.physics.mechanics.LagrangesMethod``: its Lagrangian,
+        coordinates and ``nonhol_coneqs``, solved for the velocities of ``dependent``
+        (a list of coordinates).  A forcelist or holonomic constraints are refused."""
+        from .mechanics_input import from_lagranges_method
+        return from_lagranges_method(cls, lm, dependent, name)
+
+    @classmethod
+    def from_system(cls, system, dependent=None, name=None):
+        """The system of a ``sympy.physics.mechanics.System`` (SymPy >= 1.13) whose
+        kinematic equations are u = qdot: L = ``Lagrangian(frame, *bodies)`` (with each
+        body's ``potential_energy``), its nonholonomic constraints solved for the
+        velocities of ``system.u_dep`` (or of ``dependent``).  Loads and holonomic
+        constraints are refused."""
+        from .mechanics_input import from_system
+        return from_system(cls, system, dependent, name)
+
+    def _exact(self, expr):
+        """``expr`` with its Floats as the exact rationals they print as (recorded)."""
+        from .mechanics_input import exact_rationals
+        return exact_rationals(expr, self.rationalized) if isinstance(expr, sp.Basic) else expr
+
     # ----- notation -------------------------------------------------------
     def _make_symbols(self):
         self.q, self.qd, self.qdd = {}, {}, {}
@@ -199,13 +254,13 @@ class ChaplyginSystem:
         self._names = {s.name for s in self._all_symbols}
         self._to_internal = {}
         for c in self.coordinates:
-            self._to_internal[c.diff(T, 2)] = self.qdd[c]
-            self._to_internal[c.diff(T)] = self.qd[c]
+            self._to_internal[c.diff(self._t, 2)] = self.qdd[c]
+            self._to_internal[c.diff(self._t)] = self.qd[c]
             self._to_internal[c] = self.q[c]
         self._to_public = {v: k for k, v in self._to_internal.items()}
 
     def _velocity_owner(self, key):
-        if not (isinstance(key, sp.Derivative) and key.variables == (T,)
+        if not (isinstance(key, sp.Derivative) and key.variables == (self._t,)
                 and key.expr in self.coordinates):
             raise ModelError(f"dependent: key {key!r} is not the velocity of one of the "
                              f"coordinates {self.coordinates}; write it as y.diff(t) (1.1)")
@@ -225,7 +280,7 @@ class ChaplyginSystem:
         for f in e.atoms(AppliedUndef):
             raise ModelError(f"{what} depends on {f}, which is not among the coordinates "
                              f"{self.coordinates}")
-        if T in e.free_symbols:
+        if self._t in e.free_symbols or T in e.free_symbols:
             raise ModelError(f"{what} depends explicitly on t: the Chaplygin conditions (1.3) "
                              "require L and the constraints to be free of t")
         if any(e.has(self.qdd[c]) for c in self.coordinates):
@@ -338,10 +393,48 @@ class ChaplyginSystem:
         return self._cache["acc_tidy"]
 
     @guarded("solving (1.4) for the accelerations")
-    def accelerations(self):
-        """The accelerations solved from (1.4): {q_sigma.diff(t, 2): expression}."""
-        return {self.to_public(k): self.to_public(v)
-                for k, v in self._tidy_accelerations().items()}
+    def accelerations(self, dependent=False):
+        """The accelerations solved from (1.4): {q_sigma.diff(t, 2): expression}; with
+        ``dependent=True`` also the dependent coordinates', d/dt of the constraints (1.3)
+        with these accelerations (as ``LagrangesMethod.rhs()`` gives every coordinate's)."""
+        out = {self.to_public(k): self.to_public(v)
+               for k, v in self._tidy_accelerations().items()}
+        if dependent:
+            acc, memo = self._accelerations(), {}
+            for c, phi in zip(self.dependent_coordinates, self._phi.values()):
+                out[c.diff(self._t, 2)] = self.to_public(substitute(self._dt(phi), acc, memo))
+        return out
+
+    @guarded("the constraint multipliers")
+    def multipliers(self):
+        """The Lagrange multipliers of the constraints along the motion, one per
+        constraint, in ``LagrangesMethod``'s convention: d/dt dL/dqdot_s - dL/dq_s +
+        sum_i lambda_i df_i/dqdot_s = 0 for every coordinate, f_i the constraints as given
+        (``nonhol_coneqs`` in their order, or f of ``{ydot: f}``, or ``lhs - rhs`` of an
+        ``Eq``) or f = ydot - phi (given solved, ``{ydot: phi}``); each a
+        function of q and the independent velocities (the constraint force is
+        -lambda df/dqdot).  Empty for a holonomic system."""
+        deps = self.dependent_coordinates
+        if not deps:
+            return []
+        sub = dict(zip([self.qd[c] for c in deps], self._phi.values()))
+        if self._coneqs is not None:
+            fs = [self._internal(f, "a constraint of nonhol_coneqs") for f in self._coneqs]
+        else:
+            fs = [self.qd[c] - phi for c, phi in zip(deps, self._phi.values())]
+        C = sp.Matrix([[self._d(f, self.qd[c]).xreplace(sub) for c in deps] for f in fs])
+        acc, memo = self._accelerations(), {}
+        E = sp.Matrix([substitute(self._dt(P), acc, memo) for P in self._dLdqdep_tilde()])
+        lam = C.T.LUsolve(-E)
+        return [self.to_public(v) for v in lam]
+
+    @guarded("generating the numeric right-hand side")
+    def lambdify_rhs(self, modules="math"):
+        """``f(t, state, params)``, the full model as one numeric function (``lambdify``
+        with common subexpressions): state = [every coordinate, then the independent
+        velocities], result = its time derivative; see :mod:`.numeric_rhs`."""
+        from .numeric_rhs import system_rhs
+        return system_rhs(self, modules)
 
     def _solve(self, M, rest, what, sample):
         """The solution x of M x + rest = 0, once ``M`` is shown regular at a sampled
@@ -402,7 +495,7 @@ class ChaplyginSystem:
                                  r, self._sample_time, seed=10)
                 if not chk.holds:
                     raise ModelError(
-                        f"the constraint {_name(c)}dot = {self.constraints[c.diff(T)]} is not "
+                        f"the constraint {_name(c)}dot = {self.constraints[c.diff(self._t)]} is not "
                         "homogeneous of degree one in the independent velocities (1.10): "
                         "there is no energy integral (1.11), so no Whittaker reduction")
                 res.append(chk)
@@ -448,13 +541,17 @@ class ChaplyginSystem:
         """The time-domain steps (1.1)-(1.4), (1.10), (1.11) for this system."""
         steps = []
         dep_q = [self.q[c] for c in self.dependent_coordinates]
+        floats = self._floats_check()
+        note = floats and floats.claim.replace("$", "")
         if self.is_holonomic:
-            steps.append(Step("1.1", "constraints: none ($g = 0$, a holonomic system)", []))
+            steps.append(Step("1.1", "constraints: none ($g = 0$, a holonomic system)", [],
+                              floats, note=note or ""))
         else:
             steps.append(Step("1.1", "the dependent velocities, solved for (Chetaev-type ideal "
                               "constraints)",
                               [eq(self.qd[c], phi) for c, phi in
-                               zip(self.dependent_coordinates, self._phi.values())]))
+                               zip(self.dependent_coordinates, self._phi.values())], floats,
+                              note=note or ""))
         steps.append(Step("1.2", r"$\tilde L$: the Lagrangian with the constraints substituted",
                           [eq(sp.Symbol("Ltilde"), self._Ltilde)], dep_q and check_zero(
             "1.2", r"the terms of (1.2) in $\partial\varphi/\partial q_{\varepsilon+\beta}$ and "
@@ -490,6 +587,28 @@ class ChaplyginSystem:
         steps.append(Step("1.11", "the energy integral", [eq(self._energy(), sp.Symbol("h"))],
                           chk))
         return steps
+
+    def _floats_check(self):
+        """None, or the check that each Float of the input was taken as the rational it
+        prints as, equal to it to the Float's precision (a relative difference below
+        10**(1 - digits), digits the Float's decimal precision)."""
+        if not self.rationalized:
+            return None
+        worst, ok = 0.0, True
+        for f, r in self.rationalized.items():
+            digits = mpmath.libmp.prec_to_dps(f._prec)
+            with mpmath.workprec(f._prec + 64):
+                d = abs(mpmath.mpf(f._mpf_) - mpmath.mpf(r.p) / r.q)
+                rel = d / max(abs(mpmath.mpf(r.p) / r.q), mpmath.mpf(10) ** -digits)
+            worst = max(worst, float(rel))
+            ok = ok and rel < mpmath.mpf(10) ** (1 - digits)
+        pairs = ", ".join(f"{float(f)!r} = {r}" if f._prec == 53 else f"{f} = {r}"
+                          for f, r in sorted(self.rationalized.items(), key=lambda i: i[1]))
+        from .verify import Check
+        return Check("1.1", "the Float coefficients are taken as the exact rationals they "
+                     f"print as ({pairs}); the model derived and checked is the rational one",
+                     ok, "exact", "Rational(str(Float)), equal to each Float to its "
+                     f"precision: largest relative difference {worst:.1e}")
 
     def _euler_shown(self):
         """(1.10) as the paper writes it, and the partial derivatives it is made of."""
@@ -536,8 +655,10 @@ class ChaplyginSystem:
 
     def __repr__(self):
         kind = "holonomic" if self.is_holonomic else "non-holonomic"
+        floats = (f", {len(self.rationalized)} Float coefficient(s) taken as exact rationals"
+                  if self.rationalized else "")
         return (f"<ChaplyginSystem {self.name!r}: {kind}, coordinates "
-                f"{[_name(c) for c in self.coordinates]}>")
+                f"{[_name(c) for c in self.coordinates]}{floats}>")
 
     # ----- numerics (whittaker_teach.numerics) -----------------------------
     def simulate(self, q0, qdot0, t_span, params, method="DOP853", rtol=1e-9, atol=None,
