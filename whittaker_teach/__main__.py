@@ -10,7 +10,9 @@ Commands::
                                   verification, against sympy.physics.mechanics
     bench derivation --scale [--n 2..8] [--family F] [--no-memory] [--repeat N]
                                   the same for families of n coordinates: a table of
-                                  reduce, verify and peer times and peak memory
+                                  reduce, verify and peer times and peak memory;
+                                  --family chain: the sleighs against LagrangesMethod
+                                  and KanesMethod
     bench numerics [--quick] [--json FILE] [--csv FILE] [--plot FILE] [--quiet]
                                   speed against error: the full, reduced and exact
                                   models of the sledge (whittaker_teach.numerics)
@@ -89,8 +91,9 @@ def main(argv=None):
     b.add_argument("--scale", action="store_true",
                    help="derivation: the families of n coordinates (bench.family)")
     b.add_argument("--n", default="2..8", help="derivation --scale: the range of n, e.g. 2..4")
-    b.add_argument("--family", choices=("both", "nonholonomic", "holonomic"), default="both",
-                   help="derivation --scale: which family")
+    b.add_argument("--family", choices=("both", "nonholonomic", "holonomic", "chain"),
+                   default="both", help="derivation --scale: which family (chain: the "
+                   "sleighs, against LagrangesMethod and KanesMethod)")
     b.add_argument("--no-memory", action="store_true",
                    help="derivation --scale: skip the traced runs for peak memory")
     b.add_argument("--quick", action="store_true", help="numerics: a smaller study")

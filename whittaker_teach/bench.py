@@ -13,6 +13,12 @@ Each time is the fastest of ``--repeat`` alternating runs of each side (the
 slower runs of a shared machine measure its other load), and the growth per
 added coordinate is fitted to them.
 
+``python -m whittaker_teach bench derivation --scale --family chain --n 4..24``: the
+chain of spring-coupled Chaplygin sleighs (:func:`chain`, g = n // 3), built by the
+benchmark with sympy.physics.mechanics, against both peers: LagrangesMethod (forming
+and ``rhs``) and KanesMethod (``kanes_equations`` and ``rhs``), the three in turn in
+fresh processes, the fastest of ``--repeat`` runs each.
+
 ``python -m whittaker_teach bench derivation``: in fresh processes, the time
 to build the sledge, derive every step of the paper and verify them all,
 against the time sympy.physics.mechanics' LagrangesMethod takes to form and
@@ -152,6 +158,116 @@ def family(n, holonomic=False):
     return T - V, q + ys, dep
 
 
+def chain(n, kane=False):
+    """The chain of spring-coupled Chaplygin sleighs with n coordinates: s = n // 3 sleighs
+    (x_i, theta_i, y_i: mass m, moment of inertia J about the contact point P_i, which
+    has no velocity across the sleigh, P_i.vel(N).dot(B_i.y) = 0), g = s constraints;
+    n - 3 s further coordinates z_j (particles of mass M on springs to theta_1).  Springs:
+    k/2 theta_i^2, c/2 (theta_(i+1) - theta_i)^2 and kappa/2 (x_(i+1) - x_i)^2.  Built
+    with sympy.physics.mechanics (frames, points, bodies).
+
+    Returns a dict: ``L`` (``me.Lagrangian``), ``q`` (every coordinate), ``coneqs`` (the
+    constraints, expressions = 0), ``dependent`` (the y_i); with ``kane``, the same
+    bodies with their velocities in the speeds u = qdot, and ``kane`` = the keyword
+    arguments of KanesMethod, ``bodies`` and ``loads`` (the springs' forces and
+    torques, -dV/dq along each point's or frame's partial velocity).
+
+    >>> F = chain(7)
+    >>> [str(c) for c in F["q"]], len(F["coneqs"])
+    (['x1(t)', 'theta1(t)', 'y1(t)', 'x2(t)', 'theta2(t)', 'y2(t)', 'z1(t)'], 2)
+    """
+    import sympy as sp
+    import sympy.physics.mechanics as me
+    from sympy.physics.mechanics import dynamicsymbols
+    t = dynamicsymbols._t
+    s, r = n // 3, n - 3 * (n // 3)
+    m, J, k, c, kappa, M = sp.symbols("m J k c kappa M", positive=True)
+    xs = [dynamicsymbols(f"x{i}") for i in range(1, s + 1)]
+    ths = [dynamicsymbols(f"theta{i}") for i in range(1, s + 1)]
+    ys = [dynamicsymbols(f"y{i}") for i in range(1, s + 1)]
+    zs = [dynamicsymbols(f"z{j}") for j in range(1, r + 1)]
+    q = [c_ for i in range(s) for c_ in (xs[i], ths[i], ys[i])] + zs
+    u = {c_.diff(t): dynamicsymbols(f"u_{c_.func.__name__}") for c_ in q}
+    speed = (lambda e: e.xreplace(u)) if kane else (lambda e: e)
+    N = me.ReferenceFrame("N")
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    V = sp.S.Zero
+    bodies, coneqs, parts = [], [], []
+    for i in range(s):
+        B = N.orientnew(f"B{i + 1}", "Axis", (ths[i], N.z))
+        B.set_ang_vel(N, speed(ths[i].diff(t)) * N.z)
+        P = O.locatenew(f"P{i + 1}", xs[i] * N.x + ys[i] * N.y)
+        P.set_vel(N, speed(xs[i].diff(t)) * N.x + speed(ys[i].diff(t)) * N.y)
+        bodies.append(me.RigidBody(f"S{i + 1}", P, B, m, (me.inertia(B, 0, 0, J), P)))
+        coneqs.append(P.vel(N).dot(B.y))
+        parts += [(P, xs[i], N.x), (B, ths[i], N.z)]
+        V += k / 2 * ths[i]**2
+        if i + 1 < s:
+            V += kappa / 2 * (xs[i + 1] - xs[i])**2 + c / 2 * (ths[i + 1] - ths[i])**2
+    for j in range(r):
+        Q = O.locatenew(f"Q{j + 1}", zs[j] * N.z)
+        Q.set_vel(N, speed(zs[j].diff(t)) * N.z)
+        bodies.append(me.Particle(f"R{j + 1}", Q, M))
+        parts.append((Q, zs[j], N.z))
+        V += k / 2 * zs[j]**2 + c / 2 * (zs[j] - ths[0])**2
+    out = {"q": q, "coneqs": coneqs, "dependent": ys}
+    if not kane:
+        out["L"] = me.Lagrangian(N, *bodies) - V
+        return out
+    dep = set(ys)
+    out["kane"] = dict(frame=N, q_ind=q, u_ind=[u[c_.diff(t)] for c_ in q if c_ not in dep],
+                       u_dependent=[u[y.diff(t)] for y in ys],
+                       kd_eqs=[u[c_.diff(t)] - c_.diff(t) for c_ in q],
+                       velocity_constraints=coneqs)
+    out["bodies"] = bodies
+    out["loads"] = [(where, -V.diff(c_) * axis) for where, c_, axis in parts]
+    return out
+
+
+def run_ours_chain(n, holonomic=None):
+    """{"reduce": s, "verify": s, "ok": bool}: the chain as a mechanics user gives it
+    (``me.Lagrangian``, the constraints = 0 solved for the y_i), reduced with
+    q_eps = x_1 (CPU time of the process)."""
+    import time
+    import whittaker_teach as wt
+    F = chain(n)
+    t0 = time.process_time()
+    red = wt.ChaplyginSystem(F["L"], F["q"], nonhol_coneqs=F["coneqs"],
+                             dependent=F["dependent"]).reduce(F["q"][0], +1)
+    red.equations
+    red.accelerations()
+    t1 = time.process_time()
+    ok = red.verify().ok
+    t2 = time.process_time()
+    return {"reduce": t1 - t0, "verify": t2 - t1, "ok": ok}
+
+
+def run_lagrange_chain(n, holonomic=None):
+    """{"peer": s}: LagrangesMethod forming and solving (rhs) the chain's equations."""
+    import time
+    from sympy.physics.mechanics import LagrangesMethod
+    F = chain(n)
+    t0 = time.process_time()
+    lm = LagrangesMethod(F["L"], F["q"], nonhol_coneqs=F["coneqs"])
+    lm.form_lagranges_equations()
+    lm.rhs()
+    return {"peer": time.process_time() - t0, "ok": True}
+
+
+def run_kane_chain(n, holonomic=None):
+    """{"peer": s}: KanesMethod (kanes_equations + rhs) of the chain, the same bodies and
+    the springs as loads, speeds u = qdot, the y_i's speeds dependent."""
+    import time
+    from sympy.physics.mechanics import KanesMethod
+    F = chain(n, kane=True)
+    t0 = time.process_time()
+    km = KanesMethod(**F["kane"])
+    km.kanes_equations(F["bodies"], F["loads"])
+    km.rhs()
+    return {"peer": time.process_time() - t0, "ok": True}
+
+
 def run_ours(n, holonomic):
     """{"reduce": s, "verify": s, "ok": bool} for the family, in this process (CPU time
     of the process: a load on the machine does not count)."""
@@ -262,6 +378,40 @@ class _Measurer:
             self.server = None
 
 
+def chain_rows(ns, repeat=1):
+    """One dict per n of the chain family (:func:`chain`): ours (reduce, verify),
+    LagrangesMethod (``peer``) and KanesMethod (``kane``), each the fastest of ``repeat``
+    runs, the three run in turn in fresh processes; the ratios to each peer."""
+    rows = []
+    measure = _Measurer()
+    try:
+        for n in ns:
+            runs = [(measure("run_ours_chain", n, None), measure("run_lagrange_chain", n, None),
+                     measure("run_kane_chain", n, None)) for _ in range(repeat)]
+            fastest = min((o for o, _, _ in runs), key=lambda o: o["reduce"] + o["verify"])
+            row = {"n": n, "reduce": fastest["reduce"], "verify": fastest["verify"],
+                   "ok": all(o["ok"] for o, _, _ in runs),
+                   "peer": min(p["peer"] for _, p, _ in runs),
+                   "kane": min(k["peer"] for _, _, k in runs)}
+            row["ratio"] = (row["reduce"] + row["verify"]) / row["peer"]
+            row["kane_ratio"] = (row["reduce"] + row["verify"]) / row["kane"]
+            rows.append(row)
+    finally:
+        measure.close()
+    return rows
+
+
+def chain_table(rows, title="chain of spring-coupled Chaplygin sleighs (g = n // 3)"):
+    """The chain rows as a text table (at most 100 columns)."""
+    lines = [f"{title}\n{'n':>3} {'g':>3} {'reduce s':>9} {'verify s':>9} {'Lagrange s':>10} "
+             f"{'Kane s':>8} {'/Lagrange':>9} {'/Kane':>6}  checks"]
+    for r in rows:
+        lines.append(f"{r['n']:>3} {r['n'] // 3:>3} {r['reduce']:9.3f} {r['verify']:9.3f} "
+                     f"{r['peer']:10.3f} {r['kane']:8.3f} {r['ratio']:9.2f} "
+                     f"{r['kane_ratio']:6.2f}  {'held' if r['ok'] else 'FAILED'}")
+    return "\n".join(lines)
+
+
 def scale_rows(ns, holonomic, memory=True, repeat=1):
     """One dict per n: times (s, the fastest of ``repeat`` runs of each side, alternating:
     on a shared machine the slower runs measure the other load, not the code), ratio
@@ -323,8 +473,20 @@ def scale_main(args):
           "(forked after the imports);\n"
           "peak memory (MiB, after the imports) by tracemalloc")
     ok = True
+    family = getattr(args, "family", "both")
+    if family == "chain":
+        rows = chain_rows(ns, repeat=repeat)
+        print("chain: KanesMethod (kanes_equations + rhs) beside LagrangesMethod (forming +\n"
+              "rhs); /Lagrange, /Kane: (reduce + verify) over each; no memory columns", flush=True)
+        print(chain_table(rows), flush=True)
+        if len(rows) > 1:
+            print(f"growth per added coordinate (least squares on log time): ours "
+                  f"x{growth(rows, lambda r: r['reduce'] + r['verify']):.3f}, Lagrange "
+                  f"x{growth(rows, lambda r: r['peer']):.3f}, Kane "
+                  f"x{growth(rows, lambda r: r['kane']):.3f}", flush=True)
+        return 0 if all(r["ok"] for r in rows) else 1
     kinds = {"both": (False, True), "nonholonomic": (False,), "holonomic": (True,)}
-    for holonomic in kinds[getattr(args, "family", "both")]:
+    for holonomic in kinds[family]:
         rows = scale_rows(ns, holonomic, memory=not args.no_memory, repeat=repeat)
         title = ("holonomic family" if holonomic else
                  "non-holonomic family (g = (n - 1) // 2 constraints)")

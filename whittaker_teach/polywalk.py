@@ -402,12 +402,22 @@ def _monomial(t):
                for x in sp.Mul.make_args(t))
 
 
+#: a polynomial (its contents out) of more terms than this in more generators than
+#: ``FACTOR_GENERATORS_LIMIT`` is not factored further: ``factor`` is for reading, and
+#: Wang's algorithm on, say, the 38-term potential of a chain of eight sleighs (17
+#: generators) takes a quarter of a second to find it irreducible
+FACTOR_TERMS_LIMIT = 24
+FACTOR_GENERATORS_LIMIT = 6
+
+
 def _factor_list(p):
     """``p.factor_list()`` over the integers, at once where the answer is plain: once the
     integer and monomial contents are out, a polynomial of degree one in a generator x
     whose x-coefficient is a single term is irreducible (a factor would divide that term,
     and so every term).  Most coefficients of a derivation are such; ``factor_list``
-    spends half a millisecond on each."""
+    spends half a millisecond on each.  A large polynomial in many generators
+    (``FACTOR_TERMS_LIMIT``, ``FACTOR_GENERATORS_LIMIT``) keeps its contents out and
+    is left as one factor (a form to read; equal to the input either way)."""
     R = p.ring
     if not p:
         return p.factor_list()
@@ -424,4 +434,7 @@ def _factor_list(p):
         degrees = [m[i] for m in q.itermonoms()]
         if max(degrees) == 1 and degrees.count(1) == 1:
             return c, factors + [(q, 1)]
+    if len(q) > FACTOR_TERMS_LIMIT and sum(map(any, zip(*q.itermonoms()))) \
+            > FACTOR_GENERATORS_LIMIT:
+        return c, factors + [(q, 1)]
     return p.factor_list()

@@ -55,3 +55,41 @@ def test_without_fork_each_measurement_is_a_new_interpreter(monkeypatch):
 def test_growth_is_the_fitted_factor_per_coordinate():
     rows = [{"n": n, "t": 0.1 * 1.5 ** n} for n in range(2, 9)]
     assert abs(bench.growth(rows, lambda r: r["t"]) - 1.5) < 1e-12
+
+
+def test_chain_benchmark_against_both_peers_runs_and_prints(record_property):
+    """The chain of sleighs against LagrangesMethod and KanesMethod (issue 26): times
+    printed, not asserted; every check of the derivation held."""
+    rows = bench.chain_rows(range(4, 6))
+    assert [r["n"] for r in rows] == [4, 5] and all(r["ok"] for r in rows)
+    assert all(r["peer"] > 0 and r["kane"] > 0 and r["reduce"] > 0 for r in rows)
+    table = bench.chain_table(rows)
+    record_property("printed", "\n" + table)
+    assert len(table.splitlines()) == 4 and "Kane" in table
+
+
+def test_chain_family_is_the_same_system_for_each_peer():
+    """Kane's bodies and loads give the accelerations LagrangesMethod gives (n = 5)."""
+    import sympy as sp
+    from sympy.physics.mechanics import KanesMethod, LagrangesMethod, dynamicsymbols
+    F, K = bench.chain(5), bench.chain(5, kane=True)
+    lm = LagrangesMethod(F["L"], F["q"], nonhol_coneqs=F["coneqs"])
+    lm.form_lagranges_equations()
+    km = KanesMethod(**K["kane"])
+    km.kanes_equations(K["bodies"], K["loads"])
+    t = dynamicsymbols._t
+    q = F["q"]
+    pt = dict(zip(q, [0.3, 0.5, 0.1, 0.2, 0.4]))
+    pt.update(dict(zip(sp.symbols("m J k c kappa M", positive=True), [1.1, 0.7, 1.3, 0.4, 0.9, 1.2])))
+    x1, th1, y1 = q[:3]
+    vel = {x1.diff(t): 0.8, th1.diff(t): -0.3, q[3].diff(t): 0.6, q[4].diff(t): 0.2}
+    vel[y1.diff(t)] = 0.8 * sp.tan(0.5)
+    lag = lm.rhs().xreplace({**pt, **vel})
+    us = {u: vel[c.diff(t)] for u, c in zip([*K["kane"]["u_ind"], *K["kane"]["u_dependent"]],
+                                            [x1, th1, q[3], q[4], y1])}
+    kane = km.rhs().xreplace({**pt, **us})
+    n = len(q)
+    lag_acc = [float(lag[n + i]) for i in range(n)]
+    kane_acc = {u.func.__name__: float(v) for u, v in zip(km.u, kane[n:])}
+    for c, a in zip(q, lag_acc):
+        assert abs(kane_acc[f"u_{c.func.__name__}"] - a) < 1e-9
