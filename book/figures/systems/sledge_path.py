@@ -1,0 +1,121 @@
+"""The sledge on its path: the sketch of chapter 6 (``wt.examples.sledge()``).
+
+The path is the exact motion of section 3 of the paper, (3.12)-(3.15):
+theta = a cos(omega t), xdot = C cos(theta), ydot = C sin(theta), here with
+a = 0.9, C = omega = 1, summed by the trapezoidal rule (only for drawing).
+On it, the sledge at one instant, with the labels of the chapter 3 figure of
+the sledge: the runner, the contact point (x, y), the heading theta measured
+from Ox, the torsional spring (force function U = -k^2 theta^2 / 2, pulling
+theta back to 0), the constraint direction (the velocity of the contact point
+lies along the runner, ydot = xdot tan theta, (3.2)) and the reaction of the
+plane (across the runner).
+
+Run ``python book/figures/systems/sledge_path.py``: it writes
+``sledge_path.svg`` beside this file (deterministic output).
+"""
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("svg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+NAME = "sledge_path"
+plt.rcParams["svg.hashsalt"] = NAME
+plt.rcParams["svg.fonttype"] = "path"
+plt.rcParams["font.size"] = 22
+plt.rcParams["mathtext.fontset"] = "dejavuserif"
+
+A_AMP, SPEED = 0.9, 1.0                    # amplitude a (rad) and speed C
+
+
+def path(t_end=2.45 * np.pi, n=4001):
+    """(x, y, theta) of the exact motion (3.12)-(3.15), from the origin."""
+    t = np.linspace(0.0, t_end, n)
+    th = A_AMP * np.cos(t)
+    dx, dy = SPEED * np.cos(th), SPEED * np.sin(th)
+    step = np.diff(t)
+    x = np.concatenate([[0.0], np.cumsum(0.5 * (dx[1:] + dx[:-1]) * step)])
+    y = np.concatenate([[0.0], np.cumsum(0.5 * (dy[1:] + dy[:-1]) * step)])
+    return x, y, th
+
+
+def arrow(ax, P, Q, color, lw=3.0):
+    ax.annotate("", xy=Q, xytext=P, annotation_clip=False,
+                arrowprops=dict(arrowstyle="-|>", color=color, lw=lw,
+                                mutation_scale=26, shrinkA=0, shrinkB=0))
+
+
+def draw():
+    x, y, th = path()
+    fig, ax = plt.subplots(figsize=(10.0, 6.4))
+    ax.plot(x, y, color="0.55", lw=2.0, ls=(0, (6, 4)))
+    ax.text(x[1200], y[1200] - 0.45, "path", color="0.4", ha="center", va="top")
+
+    # the sledge at one instant: t = 2 pi, the heading at its largest, theta = a
+    i = np.searchsorted(np.linspace(0.0, 2.45 * np.pi, len(x)), 2.0 * np.pi)
+    P, h = np.array([x[i], y[i]]), th[i]
+    u, nrm = np.array([np.cos(h), np.sin(h)]), np.array([-np.sin(h), np.cos(h)])
+    half, width = 1.0, 0.12
+    body = np.array([P + s1 * half * u + s2 * width * nrm
+                     for s1, s2 in [(-1, -1), (1, -1), (1, 1), (-1, 1), (-1, -1)]])
+    ax.fill(body[:, 0], body[:, 1], color="C0", alpha=0.30, zorder=3)
+    ax.plot(body[:, 0], body[:, 1], color="C0", lw=2.5, zorder=3)
+    tail = P - 0.75 * half * u
+    ax.annotate("runner", xy=tail - 0.1 * nrm, xytext=tail + np.array([0.1, -1.75]),
+                color="C0", ha="center",
+                arrowprops=dict(arrowstyle="-", color="C0", lw=1.5))
+
+    # Ox direction and the heading theta
+    ax.plot([P[0], P[0] + 2.1], [P[1], P[1]], color="k", lw=1.2, ls="--", zorder=2)
+    arc = np.linspace(0.0, h, 40)
+    ax.plot(P[0] + 1.6 * np.cos(arc), P[1] + 1.6 * np.sin(arc), color="k", lw=1.5)
+    ax.text(P[0] + 1.78, P[1] + 0.45, r"$\theta$", fontsize=26)
+
+    # the torsional spring at the contact point: a small spiral
+    s = np.linspace(0.0, 3.2 * np.pi, 300)
+    r = 0.05 + 0.03 * s
+    ax.plot(P[0] + r * np.cos(s + h), P[1] + r * np.sin(s + h), color="C2", lw=2.0,
+            zorder=4)
+    ax.annotate(r"spring $k$", xy=P + np.array([-0.22, -0.2]),
+                xytext=P + np.array([-2.7, -1.75]), color="C2", ha="center",
+                arrowprops=dict(arrowstyle="-", color="C2", lw=1.5))
+
+    # the contact point
+    ax.plot(*P, "o", color="k", ms=9, zorder=5)
+    ax.annotate(r"contact point $(x, y)$", xy=P + np.array([0.08, -0.08]),
+                xytext=P + np.array([0.5, -1.3]), ha="left",
+                arrowprops=dict(arrowstyle="-", color="k", lw=1.2))
+
+    # constraint direction (the velocity lies along the runner) and the reaction
+    arrow(ax, P + half * u, P + (half + 1.1) * u, "C3")
+    ax.text(*(P + (half + 1.2) * u + np.array([0.1, 0.0])),
+            "constraint\ndirection", color="C3", va="center", ha="left")
+    arrow(ax, P, P + 1.5 * nrm, "C1")
+    ax.text(*(P + 1.6 * nrm), "reaction", color="C1", ha="center", va="bottom")
+
+    # the axes
+    x0, y0 = -0.4, y.min() - 1.9
+    arrow(ax, (x0, y0), (x[-1] + 0.3, y0), "k", lw=1.5)
+    arrow(ax, (x0, y0), (x0, y.max() + 1.2), "k", lw=1.5)
+    ax.text(x[-1] + 0.4, y0, r"$x$", va="center")
+    ax.text(x0, y.max() + 1.3, r"$y$", ha="center", va="bottom")
+    ax.text(x0 - 0.15, y0 - 0.1, r"$O$", ha="right", va="top")
+
+    ax.set_aspect("equal")
+    ax.axis("off")
+    return fig
+
+
+def main():
+    fig = draw()
+    path_svg = Path(__file__).with_suffix(".svg")
+    fig.savefig(path_svg, metadata={"Date": None}, bbox_inches="tight")
+    plt.close(fig)
+    return path_svg
+
+
+if __name__ == "__main__":
+    print(main())
