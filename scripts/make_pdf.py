@@ -146,7 +146,7 @@ def build_document(site: Path, pages: list[tuple[str, str]]) -> str:
 # Run in the page before printing: open folds, fit wide equations to the page.
 PREPARE_JS = """async () => {
     await MathJax.startup.promise;
-    document.querySelectorAll('details').forEach(d => { d.open = true; });
+    document.querySelectorAll('details:not(.wt-report)').forEach(d => { d.open = true; });
     document.querySelectorAll('.toggle-hidden').forEach(e => e.classList.remove('toggle-hidden'));
     await document.fonts.ready;
     let scaled = 0, smallest = 1;

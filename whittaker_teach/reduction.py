@@ -538,8 +538,9 @@ class Reduction:
         return Step("1.26a", r"used in (1.26): $(\partial L/\partial\dot q_{\varepsilon+\beta})^*$,"
                     r" $\partial L/\partial\dot q_{\varepsilon+\beta}$ in $q'$, $q$ and $h$",
                     [eq(a, b) for a, b in zip(names, forms)], check_reading(
-                        "1.26a", r"the form shown is $\partial\tilde L/\partial\dot "
-                        r"q_{\varepsilon+\beta}$ under (1.5) and (1.12)", forms, self._Pstar,
+                        "1.26a", r"the form shown is $\partial L/\partial\dot "
+                        r"q_{\varepsilon+\beta}$, differentiated first, then with the "
+                        "constraints (1.3), (1.5) and (1.12) substituted", forms, self._Pstar,
                         self))
 
     def _equation_steps(self):
@@ -572,6 +573,7 @@ class Reduction:
             title += (" (where $q''_\\nu$ is small enough to read as one fraction; "
                       "the others are too large for a cleared form)")
         st.append(Step("1.26b", title, lambda: [eq(k, v) for k, v in tidy_acc.items()]
+                       + ["(1.26) cleared of denominators:" if cleared else ""][:len(cleared)]
                        + [eq(c, 0) for c in cleared], check_zero(
                            "1.26b", r"(1.26) and the cleared form vanish at the $q''_\nu$ shown",
                            [substitute(e, on, at_q) for e in self._eqs]

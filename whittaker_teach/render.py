@@ -17,6 +17,8 @@ Long equations are broken over several lines, at the top-level ``+``/``-``
   terminal's width (100 columns when the output is not a terminal).
 
 >>> import sympy as sp
+
+from .labels import is_paper_number, shown_label
 >>> a, b, c = sp.symbols("a b c")
 >>> print(equation_unicode(sp.Eq(sp.Symbol("y"), a + b + c), width=12))
 y = a + b
@@ -32,6 +34,8 @@ import shutil
 import textwrap
 
 import sympy as sp
+
+from .labels import is_paper_number, shown_label
 
 __all__ = ["step_unicode", "step_latex", "derivation_unicode", "derivation_latex", "show",
            "equation_latex", "equation_unicode", "tex_width", "display_width", "tag_width",
@@ -346,12 +350,16 @@ def _tex_rows(rows, tex=sp.latex):
     return out
 
 
+_VARPHI = re.compile(r"\\phi(?![A-Za-z])")
+
+
 def equation_latex(e, width=LATEX_WIDTH, **settings) -> str:
     """``e`` (an ``Eq`` or an expression) as LaTeX, broken at top-level + and - into an
     ``aligned`` block when wider than ``width`` em (:func:`tex_width`); ``settings`` go
-    to ``sympy.latex`` (e.g. ``mul_symbol="dot"``)."""
+    to ``sympy.latex`` (e.g. ``mul_symbol="dot"``).  SymPy's ``\\phi`` is set as
+    ``\\varphi``: the φ of the Unicode output and of the book's prose."""
     def tex(x):
-        return sp.latex(x, **settings)
+        return _VARPHI.sub(r"\\varphi", sp.latex(x, **settings))
     whole = tex(e)
     if tex_width(whole) <= width:
         return whole
@@ -527,7 +535,7 @@ def _tex_to_unicode(tex):
     s = re.sub(r"\^\{?([0-9+\-*]+)\}?", lambda m: m.group(1).translate(_SUP), s)
     s = re.sub(r"\\(dots|ldots)(?![A-Za-z])", "…", s)
     s = re.sub(r"\\([A-Za-z]+)", r"\1", s)
-    s = re.sub(r"_\{(\([^{}]*\))\}", r"_\1", s)         # _{(1.26b)}: its own parentheses
+    s = re.sub(r"_\{([(\[][^{}]*[)\]])\}", r"_\1", s)   # _{[1.26b]}: its own brackets
     s = re.sub(r"_\{([^{}]{2,})\}", r"_(\1)", s)
     s = re.sub(r"([∂√])\s+", r"\1", s)
     s = re.sub(r"([(\[]) +", r"\1", s)
@@ -560,10 +568,11 @@ def step_unicode(step, width=None) -> str:
     """The step as text: its label and title, its equations, its check, at most
     ``width`` columns (default :func:`terminal_width`) wide."""
     width = width or terminal_width()
-    lines = textwrap.wrap(f"({step.label}) {text_unicode(step.title)}", width,
+    lines = textwrap.wrap(f"{text_unicode(step.shown_label)} {text_unicode(step.title)}", width,
                           subsequent_indent="    ")
-    for e in step.equations:
-        lines.append(textwrap.indent(equation_unicode(e, width - 4), "    "))
+    for e in step.equations:     # an equation, or a str: a line of text between them
+        shown = text_unicode(e) if isinstance(e, str) else equation_unicode(e, width - 4)
+        lines.append(textwrap.indent(shown, "    "))
     if step.check is not None:
         lines += textwrap.wrap(f"{MARK[step.status]} {step.check.describe()}", width,
                                initial_indent="    ", subsequent_indent="      ")
@@ -573,16 +582,32 @@ def step_unicode(step, width=None) -> str:
     return "\n".join(lines)
 
 
+def _shown(label):
+    return label if label[:1] in "[(" else shown_label(label)
+
+
 def _tag(label):
-    return rf"\tag{{{label}}}" if label[0].isdigit() else rf"\tag*{{{label}}}"
+    """``\\tag{1.16}`` for the paper's numbers, ``\\tag*{[1.26b]}`` for the book's own
+    labels (see :mod:`.labels`); a label already in brackets is set as it is."""
+    if is_paper_number(label):
+        return rf"\tag{{{label}}}"
+    return rf"\tag*{{{_shown(label)}}}"
 
 
 def math_latex(equations, label=None, width=LATEX_WIDTH) -> str:
     """Equations (``Eq`` or expressions) as one LaTeX display body: a single equation
     broken to ``width`` em (at most ``PAGE_WIDTH`` less two tag widths), several in an
-    ``aligned`` block, one ``\\tag`` for all."""
+    ``aligned`` block, one ``\\tag`` for all.  A ``str`` among them is a line of text
+    (``$...$`` maths allowed) set between the equations.
+
+    >>> import sympy as sp
+    >>> x = sp.Symbol("x")
+    >>> print(math_latex([sp.Eq(x, 1), "and, cleared:", sp.Eq(x - 1, 0)], "1.26b"))
+    \\begin{aligned}&x = 1 \\cr &\\text{and, cleared:} \\cr &x - 1 = 0\\end{aligned} \\tag*{[1.26b]}
+    """
     width = min(width, PAGE_WIDTH - 2 * tag_width(label))
-    body = [equation_latex(e, width) for e in equations]
+    body = [r"\text{" + e + "}" if isinstance(e, str) else equation_latex(e, width)
+            for e in equations]
     # align at "=" only when every left side is short: a long one (or a broken
     # equation, aligned at its own "&") would widen the left column of every row
     at_equals = all(isinstance(e, sp.Equality) and tex_width(sp.latex(e.lhs)) <= 8
@@ -604,7 +629,7 @@ def math_latex(equations, label=None, width=LATEX_WIDTH) -> str:
 
 def step_latex(step) -> str:
     """The step's equations as one LaTeX display, tagged with the paper's number."""
-    return math_latex(step.equations, step.label)
+    return math_latex(step.equations, step.tag or step.label)
 
 
 def _check_line(step):
@@ -629,7 +654,7 @@ def derivation_latex(derivation, width=None) -> str:
                                         subsequent_indent="%   "))
     out = [comment(derivation.title)]
     for s in derivation.steps:
-        out.append(comment(f"({s.label}) {s.title}"))
+        out.append(comment(f"{s.shown_label} {s.title}"))
         if s.equations:
             body = step_latex(s).replace(r" \cr ", " \\cr\n    ")
             out.append(r"\begin{equation}" + body + r"\end{equation}")
@@ -657,7 +682,7 @@ def show_equation(e, label=None, lhs=None):
         display(Math(math_latex([e], label)))
         return None
     text = equation_unicode(e)
-    print(f"({label})\n" + textwrap.indent(text, "    ") if label else text)
+    print(f"{_shown(label)}\n" + textwrap.indent(text, "    ") if label else text)
     return None
 
 
@@ -703,9 +728,10 @@ def check_html(check) -> str:
 
 def _caption(s):
     """The caption of a step for a notebook: HTML (typeset maths), Markdown and text."""
-    html = [f"<strong>({s.label})</strong> {html_maths(s.title)}"]
-    md = [f"**({s.label})** {text_markdown(s.title)}"]
-    text = [f"({s.label}) {text_unicode(s.title)}"]
+    lab = s.shown_label
+    html = [f"<strong>{html_maths(lab)}</strong> {html_maths(s.title)}"]
+    md = [f"**{text_markdown(lab)}** {text_markdown(s.title)}"]
+    text = [f"{text_unicode(lab)} {text_unicode(s.title)}"]
     if s.check:
         html.append(f"{MARK[s.status]} {check_html(s.check)}")
         md.append(f"{MARK[s.status]} {check_markdown(s.check)}")

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
+from .labels import shown_label
 from .verify import Check
 
 __all__ = ["Step", "Derivation", "Report", "eq", "notation", "partial"]
@@ -39,6 +40,17 @@ class Step:
     shown: object = field(default_factory=list, repr=False)
     check: Check | None = None
     note: str = ""
+    tag: str = ""
+
+    @property
+    def shown_label(self) -> str:
+        """The label as printed: ``(1.16)`` for one of the paper's equations, in square
+        brackets for the book's own forms (``[1.26b]``); ``tag``, when given, instead.
+
+        >>> Step("1.4a", "accelerations").shown_label
+        '[1.4a]'
+        """
+        return self.tag or shown_label(self.label)
 
     @property
     def equations(self) -> list:
@@ -107,7 +119,8 @@ class Report(list):
         return self.to_text()
 
     def _repr_html_(self):
-        """A table (equation, claim, how, largest residual, held) that wraps in a narrow column."""
+        """A table (equation, claim, how, largest residual, held) that wraps in a narrow
+        column, folded under the summary line (open when a check did not hold)."""
         from html import escape
 
         from .render import html_maths
@@ -116,14 +129,17 @@ class Report(list):
             how = {"exact": f"exactly ({c.detail})",
                    "numeric": f"at {c.points} points, {c.detail}"}.get(c.method, c.detail)
             res = f"{c.max_residual:.1e}" if c.method in ("numeric", "refutation") else "0"
-            cells = [f"({escape(c.label)})", html_maths(c.claim), escape(how), res,
+            cells = [escape(shown_label(c.label)), html_maths(c.claim), escape(how), res,
                      {True: "yes", False: "NO", None: "not verified"}[c.holds]]
             rows.append("<tr>" + "".join(f"<td>{v}</td>" for v in cells) + "</tr>")
         head = "".join(f"<th>{h}</th>" for h in ("eq.", "claim", "how", "residual", "held"))
-        return ('<table class="wt-report" style="table-layout:auto;width:100%;'
+        # folded under its one-line summary; open when a check did not hold
+        return (f'<details class="wt-report"{"" if self.ok else " open"}>'
+                f"<summary>{escape(self.summary())}</summary>"
+                '<table class="wt-report" style="table-layout:auto;width:100%;'
                 'overflow-wrap:anywhere">'
-                f"<caption>{escape(self.summary())}</caption><thead><tr>{head}</tr></thead>"
-                "<tbody>" + "".join(rows) + "</tbody></table>")
+                f"<thead><tr>{head}</tr></thead>"
+                "<tbody>" + "".join(rows) + "</tbody></table></details>")
 
 
 class Derivation:

@@ -552,12 +552,14 @@ class ChaplyginSystem:
                               [eq(self.qd[c], phi) for c, phi in
                                zip(self.dependent_coordinates, self._phi.values())], floats,
                               note=note or ""))
-        steps.append(Step("1.2", r"$\tilde L$: the Lagrangian with the constraints substituted",
+        steps.append(Step("1.2", r"the Lagrangian with the constraints substituted, "
+                          r"$\tilde L$ of (1.2)",
                           [eq(sp.Symbol("Ltilde"), self._Ltilde)], dep_q and check_zero(
             "1.2", r"the terms of (1.2) in $\partial\varphi/\partial q_{\varepsilon+\beta}$ and "
             r"$\partial\tilde L/\partial q_{\varepsilon+\beta}$ vanish (Chaplygin type)",
             [self._d(phi, s) for phi in self._phi.values() for s in dep_q]
-            + [self._d(self._Ltilde, s) for s in dep_q], self._sample_time) or None))
+            + [self._d(self._Ltilde, s) for s in dep_q], self._sample_time) or None,
+            tag=r"[$\tilde L$]"))
         if not self.is_holonomic:
             free = ", ".join(f"${sp.latex(self.q[c])}$" for c in self.independent_coordinates)
             steps.append(Step("1.3", f"Chaplygin type: each constraint depends on {free} and "
@@ -617,7 +619,7 @@ class ChaplyginSystem:
         for c, phi in zip(self.dependent_coordinates, self._phi.values()):
             name = "φ_" + _name(c)
             tex = r"\varphi_{" + sp.latex(self.q[c]) + "}"
-            sym = sp.Symbol(name)
+            sym = sp.Symbol("phi_" + _name(c))     # φ_y in Unicode, \varphi_{y} in LaTeX
             sig = [self.qd[i] for i in self._sig]
             out.append(eq(sp.Add(*[partial(name, tex, v) * v for v in sig]), sym))
             out += [eq(partial(name, tex, v), phi.diff(v)) for v in sig]

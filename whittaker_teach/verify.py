@@ -86,8 +86,9 @@ class Check:
         >>> Check("1.9", "dOmega/dq = dL~/dq", True, "exact", "expand").describe()
         '(1.9) dOmega/dq = dL~/dq: verified exactly (expand)'
         """
+        from .labels import shown_label
         from .render import text_unicode     # the claim's $...$ maths as Unicode
-        head = f"({self.label}) {text_unicode(self.claim)}: {self.status}"
+        head = f"{shown_label(self.label)} {text_unicode(self.claim)}: {self.status}"
         if self.method == "exact":
             return f"{head} exactly ({self.detail})"
         if self.method == "numeric":

@@ -1,24 +1,24 @@
 # %% [markdown]
 # # The Kepler orbit with the polar angle as time
 #
-# For a planet, the polar angle $\varphi$ can take the place of time:
-# Whittaker's equation (1.27) then describes the orbit $r(\varphi)$ directly,
+# For a planet, the polar angle $\theta$ can take the place of time:
+# Whittaker's equation (1.27) then describes the orbit $r(\theta)$ directly,
 # and the conics of Kepler's first law must be among its solutions.
 
 # %% [markdown] statement
 # A particle of mass $m$ moves in the field of a fixed centre, with potential
 # energy $-\mu m/r$:
 #
-# $$L = \tfrac12 m(\dot r^2 + r^2\dot\varphi^2) + \frac{\mu m}{r}.$$
+# $$L = \tfrac12 m(\dot r^2 + r^2\dot\theta^2) + \frac{\mu m}{r}.$$
 #
-# The system is holonomic. Take $\varphi$ as the independent coordinate:
-# $q_\varepsilon = \varphi$, $r' = dr/d\varphi$ (1.5).
+# The system is holonomic. Take $\theta$ as the independent coordinate:
+# $q_\varepsilon = \theta$, $r' = dr/d\theta$ (1.5).
 # **Assumptions:** $m, \mu > 0$, $r > 0$; the particle goes round with
-# $\dot\varphi > 0$ (the direction of travel).
+# $\dot\theta > 0$ (the direction of travel).
 #
 # 1. `L_star`: the reduced Lagrangian $L^{\ast}(r', r)$ (1.6), (1.12), (1.16).
 # 2. `r_pp`: Whittaker's equation (1.27) for $L^{\ast}$, solved for $r''$.
-# 3. `h`: show that the conic $r = p/(1 + e\cos\varphi)$ ($p > 0$, $e \ge 0$: ellipses,
+# 3. `h`: show that the conic $r = p/(1 + e\cos\theta)$ ($p > 0$, $e \ge 0$: ellipses,
 #    the parabola $e = 1$ and hyperbolas $e > 1$)
 #    solves (1.27), and find the energy $h$ in terms of $p$ and $e$ (and $m$, $\mu$).
 #
@@ -34,29 +34,29 @@ from whittaker_teach.exercises import check
 
 m, mu, p = sp.symbols("m mu p", positive=True)
 r = sp.Symbol("r", positive=True)
-phidot = sp.Symbol("phidot", positive=True)   # direction of travel
-phi, rprime, rprimeprime, h, e = sp.symbols("phi rprime rprimeprime h e")
+thetadot = sp.Symbol("thetadot", positive=True)   # direction of travel
+theta, rprime, rprimeprime, h, e = sp.symbols("theta rprime rprimeprime h e")
 
 
-def d_dphi(f):
-    """d/dphi of f(r', r, phi) along a path (2.1)."""
-    return f.diff(phi) + f.diff(rprime)*rprimeprime + f.diff(r)*rprime
+def d_dtheta(f):
+    """d/dtheta of f(r', r, theta) along a path (2.1)."""
+    return f.diff(theta) + f.diff(rprime)*rprimeprime + f.diff(r)*rprime
 
 # %% [markdown]
 # ## 1. The reduced Lagrangian $L^{\ast}$
 #
-# $\Omega$ (1.6) is $L$ with $\dot r = \dot\varphi\, r'$; solve
-# $\dot\varphi\,\partial\Omega/\partial\dot\varphi - \Omega = h$ (1.13) for
-# $\dot\varphi > 0$ and put the root in $L^{\ast} = \partial\Omega/\partial\dot\varphi$ (1.16).
+# $\Omega$ (1.6) is $L$ with $\dot r = \dot\theta\, r'$; solve
+# $\dot\theta\,\partial\Omega/\partial\dot\theta - \Omega = h$ (1.13) for
+# $\dot\theta > 0$ and put the root in $L^{\ast} = \partial\Omega/\partial\dot\theta$ (1.16).
 
 # %%
 ### BEGIN SOLUTION
-Omega = m/2*((phidot*rprime)**2 + r**2*phidot**2) + mu*m/r   # (1.6)
-energy = sp.expand(phidot*Omega.diff(phidot) - Omega)        # (1.13)
+Omega = m/2*((thetadot*rprime)**2 + r**2*thetadot**2) + mu*m/r   # (1.6)
+energy = sp.expand(thetadot*Omega.diff(thetadot) - Omega)        # (1.13)
 v = sp.Symbol("v")
-roots = sp.solve(sp.Eq(energy.subs(phidot, v), h), v)
-phidot_sol, = [s for s in roots if not s.could_extract_minus_sign()]
-L_star = sp.simplify(Omega.diff(phidot).subs(phidot, phidot_sol))
+roots = sp.solve(sp.Eq(energy.subs(thetadot, v), h), v)
+thetadot_sol, = [s for s in roots if not s.could_extract_minus_sign()]
+L_star = sp.simplify(Omega.diff(thetadot).subs(thetadot, thetadot_sol))
 ### END SOLUTION
 ### PLACEHOLDER: L_star = None  # your answer here: L* in r, rprime and h
 L_star
@@ -69,7 +69,7 @@ check("kepler-orbit", L_star, part="L_star")
 
 # %%
 ### BEGIN SOLUTION
-whittaker = d_dphi(L_star.diff(rprime)) - L_star.diff(r)     # (1.27)
+whittaker = d_dtheta(L_star.diff(rprime)) - L_star.diff(r)     # (1.27)
 r_pp, = sp.solve(whittaker, rprimeprime)
 r_pp = sp.factor(r_pp)
 ### END SOLUTION
@@ -82,23 +82,23 @@ check("kepler-orbit", r_pp, part="r_pp")
 # %% [markdown]
 # ## 3. The conic, and its energy
 #
-# Put $r = p/(1 + e\cos\varphi)$, with its $r'$ and $r''$, in the equation of
-# step 2. For which $h$ does the residual vanish for every $\varphi$?
+# Put $r = p/(1 + e\cos\theta)$, with its $r'$ and $r''$, in the equation of
+# step 2. For which $h$ does the residual vanish for every $\theta$?
 
 # %%
 ### BEGIN SOLUTION
-conic = p/(1 + e*sp.cos(phi))
-on_orbit = {r: conic, rprime: conic.diff(phi)}
-residual = sp.factor(sp.together(conic.diff(phi, 2) - r_pp.subs(on_orbit)))
+conic = p/(1 + e*sp.cos(theta))
+on_orbit = {r: conic, rprime: conic.diff(theta)}
+residual = sp.factor(sp.together(conic.diff(theta, 2) - r_pp.subs(on_orbit)))
 h_conic, = sp.solve(residual, h)
-assert sp.simplify(residual.subs(h, h_conic)) == 0     # for every phi
+assert sp.simplify(residual.subs(h, h_conic)) == 0     # for every theta
 ### END SOLUTION
 ### PLACEHOLDER: h_conic = None  # your answer here: h in terms of p, e, m, mu
 h_conic
 
 # %% [markdown] solution
 # The residual is linear in $h$ and one value makes it vanish for every
-# $\varphi$: $h = -\dfrac{m\mu(1 - e^2)}{2p}$. It is negative for an
+# $\theta$: $h = -\dfrac{m\mu(1 - e^2)}{2p}$. It is negative for an
 # ellipse ($e < 1$: a bound orbit), zero for a parabola and positive for a
 # hyperbola, as Kepler's problem requires. The reduction never needed $t$.
 

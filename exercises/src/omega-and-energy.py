@@ -7,29 +7,29 @@
 
 # %% [markdown] statement
 # A vertical disk of mass $m$ and radius $R$ rolls without slipping on a
-# horizontal plane: $(x, y)$ is its contact point, $\varphi$ its heading and
+# horizontal plane: $(x, y)$ is its contact point, $\psi$ its heading and
 # $\theta$ its rolling angle; $A$ and $C$ are its moments of inertia about
 # the rolling axis and the vertical, and a spring of stiffness $k^2$ acts on
 # the heading:
 #
-# $$L = \tfrac12 m(\dot x^2 + \dot y^2) + \tfrac12 A\dot\theta^2 + \tfrac12 C\dot\varphi^2 -
-#   \tfrac12 k^2\varphi^2,$$
+# $$L = \tfrac12 m(\dot x^2 + \dot y^2) + \tfrac12 A\dot\theta^2 + \tfrac12 C\dot\psi^2 -
+#   \tfrac12 k^2\psi^2,$$
 #
-# $$\dot x = R\dot\theta\cos\varphi,\qquad \dot y = R\dot\theta\sin\varphi .$$
+# $$\dot x = R\dot\theta\cos\psi,\qquad \dot y = R\dot\theta\sin\psi .$$
 #
 # The constraints are of Chaplygin type (1.3) and homogeneous of degree one
 # (1.10). Take the rolling angle as the independent coordinate:
-# $q_\varepsilon = \theta$, $\varphi' = d\varphi/d\theta$ (1.5).
+# $q_\varepsilon = \theta$, $\psi' = d\psi/d\theta$ (1.5).
 # **Assumptions:** $m, R, A, C, k > 0$; the disk rolls forward, $\dot\theta > 0$;
-# $\theta$ and $\varphi$ are any angles (with $2h - k^2\varphi^2 > 0$), $\varphi'$ any real number.
+# $\theta$ and $\psi$ are any angles (with $2h - k^2\psi^2 > 0$), $\psi'$ any real number.
 #
-# 1. `Omega`: $\Omega(\varphi', \dot\theta, \varphi)$ (1.6): $\tilde L$ with $\dot\varphi = \dot\theta\,\varphi'$.
+# 1. `Omega`: $\Omega(\psi', \dot\theta, \psi)$ (1.6): $\tilde L$ with $\dot\psi = \dot\theta\,\psi'$.
 # 2. `energy`: the left-hand side of the energy integral (1.13),
 #    $\dot\theta\,\partial\Omega/\partial\dot\theta - \Omega$.
 # 3. `thetadot`: (1.13) $= h$ solved for $\dot\theta > 0$ (1.12).
 #
-# Answer with SymPy expressions in the symbols defined below (or strings; `phi'`
-# stands for $\varphi'$).
+# Answer with SymPy expressions in the symbols defined below (or strings; `psi'`
+# stands for $\psi'$).
 
 # %%
 from whittaker_teach.notebook import setup; setup()
@@ -40,11 +40,11 @@ from whittaker_teach.exercises import check
 
 m, R, A, C, k = sp.symbols("m R A C k", positive=True)
 thetadot = sp.Symbol("thetadot", positive=True)   # direction of travel
-xdot, ydot, phi, phidot, phiprime, h = sp.symbols(
-    "xdot ydot phi phidot phiprime h")
-L = (m/2*(xdot**2 + ydot**2) + A/2*thetadot**2 + C/2*phidot**2
-     - k**2*phi**2/2)
-constraints = {xdot: R*thetadot*sp.cos(phi), ydot: R*thetadot*sp.sin(phi)}
+xdot, ydot, psi, psidot, psiprime, h = sp.symbols(
+    "xdot ydot psi psidot psiprime h")
+L = (m/2*(xdot**2 + ydot**2) + A/2*thetadot**2 + C/2*psidot**2
+     - k**2*psi**2/2)
+constraints = {xdot: R*thetadot*sp.cos(psi), ydot: R*thetadot*sp.sin(psi)}
 L
 
 # %% [markdown]
@@ -55,9 +55,9 @@ L
 # %%
 ### BEGIN SOLUTION
 Ltilde = sp.simplify(L.subs(constraints))
-Omega = Ltilde.subs(phidot, thetadot*phiprime)               # (1.6)
+Omega = Ltilde.subs(psidot, thetadot*psiprime)               # (1.6)
 ### END SOLUTION
-### PLACEHOLDER: Omega = None  # your answer here: in thetadot, phi and phiprime
+### PLACEHOLDER: Omega = None  # your answer here: in thetadot, psi and psiprime
 Omega
 
 # %%
@@ -90,7 +90,7 @@ v = sp.Symbol("v")                            # thetadot without its sign
 roots = sp.solve(sp.Eq(energy.subs(thetadot, v), h), v)
 thetadot_sol, = [s for s in roots if not s.could_extract_minus_sign()]
 ### END SOLUTION
-### PLACEHOLDER: thetadot_sol = None  # your answer here: in phi, phiprime and h
+### PLACEHOLDER: thetadot_sol = None  # your answer here: in psi, psiprime and h
 thetadot_sol
 
 # %% [markdown] solution

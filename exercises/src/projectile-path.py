@@ -6,14 +6,15 @@
 # Whittaker's equation (1.27) is an equation for the path $y(x)$ itself.
 
 # %% [markdown] statement
-# A projectile of mass $m$ moves in a vertical plane under gravity $g$:
+# A projectile of mass $m$ moves in a vertical plane under gravity, of acceleration $g_0$ (the
+# paper's $g$ counts the constraints):
 #
-# $$L = \tfrac12 m(\dot x^2 + \dot y^2) - m g y .$$
+# $$L = \tfrac12 m(\dot x^2 + \dot y^2) - m g_0 y .$$
 #
 # It is a holonomic system ($g = 0$ constraints in the paper's notation; the
 # constraint term of (1.26) is absent). Take $x$ as the independent
 # coordinate: $q_\varepsilon = x$, $y' = dy/dx$ (1.5).
-# **Assumptions:** $m, g > 0$; the projectile moves with $\dot x > 0$; it is
+# **Assumptions:** $m, g_0 > 0$; the projectile moves with $\dot x > 0$; it is
 # launched from the origin with speed $v_0 > 0$ at the angle $\alpha$
 # ($0 < \alpha < \pi/2$) above the horizontal.
 #
@@ -31,7 +32,7 @@ from whittaker_teach.notebook import setup; setup()
 import sympy as sp
 from whittaker_teach.exercises import check
 
-m, g, v0 = sp.symbols("m g v0", positive=True)
+m, g_0, v0 = sp.symbols("m g_0 v0", positive=True)
 xdot = sp.Symbol("xdot", positive=True)      # direction of travel
 x, y, yprime, yprimeprime, h, alpha = sp.symbols(
     "x y yprime yprimeprime h alpha")
@@ -50,7 +51,7 @@ def d_dx(f):
 
 # %%
 ### BEGIN SOLUTION
-Omega = m/2*(xdot**2 + (xdot*yprime)**2) - m*g*y       # (1.6)
+Omega = m/2*(xdot**2 + (xdot*yprime)**2) - m*g_0*y       # (1.6)
 energy = sp.expand(xdot*Omega.diff(xdot) - Omega)      # (1.13)
 v = sp.Symbol("v")                                     # xdot, no sign
 roots = sp.solve(sp.Eq(energy.subs(xdot, v), h), v)
@@ -102,11 +103,11 @@ display(residual)
 c_sol, = sp.solve(residual, c)
 path = trial.subs(c, c_sol)
 ### END SOLUTION
-### PLACEHOLDER: path = None  # your answer here: y as a function of x, g, v0, alpha
+### PLACEHOLDER: path = None  # your answer here: y as a function of x, g_0, v0, alpha
 path
 
 # %% [markdown] solution
-# The numerator of the residual, $2 c v_0^2 + g(1 + \tan^2\alpha)$, is free of $x$:
+# The numerator of the residual, $2 c v_0^2 + g_0(1 + \tan^2\alpha)$, is free of $x$:
 # one value of $c$ makes it vanish for every $x$, so the parabola is an exact
 # solution, and by uniqueness (an initial value problem for a second-order
 # equation) it is *the* path. The mass drops out, as it should.

@@ -35,13 +35,13 @@ DEFAULT_EPS = {
     "rolling_disk": "theta",
     "cone_particle": "x",
     "projectile": "x",
-    "kepler": "phi",
+    "kepler": "theta",
     "charged_particle": "x",
 }
 OTHER_EPS = {
     "sledge": "theta",
     "offset_sleigh": "theta",
-    "rolling_disk": "phi",
+    "rolling_disk": "psi",
     "cone_particle": "y",
     "projectile": "y",
     "kepler": "r",

@@ -20,33 +20,33 @@ from whittaker_teach.exercises.parsing import AnswerError, read_answer
 # (exercise, part): (correct forms, [(wrong answer, words its hint must contain)])
 CASES = {
     ("projectile-path", "L_star"): (
-        ["sqrt(2*(h - m*g*y))*sqrt(m*(1 + y'^2))", "sqrt(2*m*(h - m*g*y)*(1 + yprime**2))",
+        ["sqrt(2*(h - m*g_0*y))*sqrt(m*(1 + y'^2))", "sqrt(2*m*(h - m*g_0*y)*(1 + yprime**2))",
          "LIB:projectile:x:L_star"],
-        [("sqrt(2*(h - m*g*y))*sqrt(1 + y'^2)", "power of m is too low by 1/2"),
-         ("-sqrt(2*(h - m*g*y))*sqrt(m*(1 + y'^2))", "sign"),
-         ("2*(h - m*g*y)*sqrt(m*(1 + y'^2))", "power")]),
+        [("sqrt(2*(h - m*g_0*y))*sqrt(1 + y'^2)", "power of m is too low by 1/2"),
+         ("-sqrt(2*(h - m*g_0*y))*sqrt(m*(1 + y'^2))", "sign"),
+         ("2*(h - m*g_0*y)*sqrt(m*(1 + y'^2))", "power")]),
     ("projectile-path", "y_pp"): (
-        ["g*(1 + y'^2)/(2*(g*y - h/m))", "-m*g*(1 + yprime^2)/(2*(h - m*g*y))"],
-        [("g*(1 + y'^2)/(g*y - h/m)", "constant factor"),
-         ("-g*(1 + y'^2)/(2*(g*y - h/m))", "sign"),
-         ("g*(1 + y'^2)^2/(2*(g*y - h/m))", "power")]),
+        ["g_0*(1 + y'^2)/(2*(g_0*y - h/m))", "-m*g_0*(1 + yprime^2)/(2*(h - m*g_0*y))"],
+        [("g_0*(1 + y'^2)/(g_0*y - h/m)", "constant factor"),
+         ("-g_0*(1 + y'^2)/(2*(g_0*y - h/m))", "sign"),
+         ("g_0*(1 + y'^2)^2/(2*(g_0*y - h/m))", "power")]),
     ("projectile-path", "path"): (
-        ["x*tan(alpha) - g*x^2*(1 + tan(alpha)^2)/(2*v0^2)",
-         "x*tan(alpha) - g*x**2*sec(alpha)**2/(2*v0**2)",
-         "(x*sin(2*alpha) - g*x^2/v0^2)/(2*cos(alpha)^2)"],
-        [("x*tan(alpha) - g*x^2/(v0^2*cos(alpha)^2)", "2 times"),
-         ("x*tan(alpha) + g*x^2/(2*v0^2*cos(alpha)^2)", "sign"),
-         ("x*tan(alpha) - g*x^2/(2*v0*cos(alpha)^2)", "v0")]),
+        ["x*tan(alpha) - g_0*x^2*(1 + tan(alpha)^2)/(2*v0^2)",
+         "x*tan(alpha) - g_0*x**2*sec(alpha)**2/(2*v0**2)",
+         "(x*sin(2*alpha) - g_0*x^2/v0^2)/(2*cos(alpha)^2)"],
+        [("x*tan(alpha) - g_0*x^2/(v0^2*cos(alpha)^2)", "2 times"),
+         ("x*tan(alpha) + g_0*x^2/(2*v0^2*cos(alpha)^2)", "sign"),
+         ("x*tan(alpha) - g_0*x^2/(2*v0*cos(alpha)^2)", "v0")]),
     ("kepler-orbit", "L_star"): (
         ["sqrt(2*h + 2*m*mu/r)*sqrt(m*(r^2 + r'^2))", "sqrt(2*m*(h*r + m*mu)*(r^2 + rprime^2)/r)",
-         "LIB:kepler:phi:L_star"],
+         "LIB:kepler:theta:L_star"],
         [("sqrt(2*h + 2*m*mu/r)*sqrt(r^2 + r'^2)", "power of m is too low by 1/2"),
          ("-sqrt(2*h + 2*m*mu/r)*sqrt(m*(r^2 + r'^2))", "sign"),
          ("(2*h + 2*m*mu/r)*sqrt(m*(r^2 + r'^2))", "power")]),
     ("kepler-orbit", "r_pp"): (
         ["(r^2*(2*h*r + m*mu) + r'^2*(4*h*r + 3*m*mu))/(2*r*(h*r + m*mu))",
          "r*(2*h*r + m*mu)/(2*(h*r + m*mu)) + rprime^2*(4*h*r + 3*m*mu)/(2*r*(h*r + m*mu))",
-         "LIB:kepler:phi:acc"],
+         "LIB:kepler:theta:acc"],
         [("(r^2*(2*h*r + m*mu) + r'^2*(4*h*r + 3*m*mu))/(2*(h*r + m*mu))", "factor r"),
          ("-(r^2*(2*h*r + m*mu) + r'^2*(4*h*r + 3*m*mu))/(2*r*(h*r + m*mu))", "sign"),
          ("(r^2*(2*h*r + m*mu) + r'^2*(4*h*r + 3*m*mu))/(2*r*(h*r + m*mu)^2)", "power")]),
@@ -56,25 +56,25 @@ CASES = {
          ("m*mu*(1 - e^2)/(2*p)", "sign"),
          ("-m*mu*(1 - e^2)/(2*p^2)", "power of p")]),
     ("omega-and-energy", "Omega"): (
-        ["thetadot^2*(A + m*R^2 + C*phi'^2)/2 - k^2*phi^2/2",
-         "A*thetadot**2/2 + m*R**2*thetadot**2*(sin(phi)**2 + cos(phi)**2)/2 "
-         "+ C*(thetadot*phiprime)**2/2 - k**2*phi**2/2", "LIB:rolling_disk:theta:Omega"],
-        [("thetadot^2*(A + m*R^2 + C*phi'^2) - k^2*phi^2/2", "terms of your answer are 2 times"),
-         ("thetadot^2*(A + m*R^2 + C*phi'^2)/2 + k^2*phi^2/2", "answer to part 'energy'"),
-         ("thetadot^2*(A + m*R + C*phi'^2)/2 - k^2*phi^2/2", "R")]),
+        ["thetadot^2*(A + m*R^2 + C*psi'^2)/2 - k^2*psi^2/2",
+         "A*thetadot**2/2 + m*R**2*thetadot**2*(sin(psi)**2 + cos(psi)**2)/2 "
+         "+ C*(thetadot*psiprime)**2/2 - k**2*psi**2/2", "LIB:rolling_disk:theta:Omega"],
+        [("thetadot^2*(A + m*R^2 + C*psi'^2) - k^2*psi^2/2", "terms of your answer are 2 times"),
+         ("thetadot^2*(A + m*R^2 + C*psi'^2)/2 + k^2*psi^2/2", "answer to part 'energy'"),
+         ("thetadot^2*(A + m*R + C*psi'^2)/2 - k^2*psi^2/2", "R")]),
     ("omega-and-energy", "energy"): (
-        ["thetadot^2*(A + m*R^2 + C*phi'^2)/2 + k^2*phi^2/2",
-         "(thetadot**2*(A + m*R**2 + C*phiprime**2) + k**2*phi**2)/2"],
-        [("thetadot^2*(A + m*R^2 + C*phi'^2)/2 + k^2*phi^2", "one term of your answer is 2 times"),
-         ("thetadot^2*(A + m*R^2 + C*phi'^2)/2 - k^2*phi^2/2", "answer to part 'Omega'"),
-         ("thetadot*(A + m*R^2 + C*phi'^2)/2 + k^2*phi^2/2", "power of thetadot")]),
+        ["thetadot^2*(A + m*R^2 + C*psi'^2)/2 + k^2*psi^2/2",
+         "(thetadot**2*(A + m*R**2 + C*psiprime**2) + k**2*psi**2)/2"],
+        [("thetadot^2*(A + m*R^2 + C*psi'^2)/2 + k^2*psi^2", "one term of your answer is 2 times"),
+         ("thetadot^2*(A + m*R^2 + C*psi'^2)/2 - k^2*psi^2/2", "answer to part 'Omega'"),
+         ("thetadot*(A + m*R^2 + C*psi'^2)/2 + k^2*psi^2/2", "power of thetadot")]),
     ("omega-and-energy", "thetadot"): (
-        ["sqrt(2*h - k^2*phi^2)/sqrt(A + m*R^2 + C*phi'^2)",
-         "sqrt((2*h - k**2*phi**2)/(A + m*R**2 + C*phiprime**2))",
+        ["sqrt(2*h - k^2*psi^2)/sqrt(A + m*R^2 + C*psi'^2)",
+         "sqrt((2*h - k**2*psi**2)/(A + m*R**2 + C*psiprime**2))",
          "LIB:rolling_disk:theta:velocity"],
-        [("sqrt(2*h - k^2*phi^2)/sqrt(A + C*phi'^2)", "inside the square root in the denominator"),
-         ("-sqrt(2*h - k^2*phi^2)/sqrt(A + m*R^2 + C*phi'^2)", "sign"),
-         ("(2*h - k^2*phi^2)/sqrt(A + m*R^2 + C*phi'^2)", "power")]),
+        [("sqrt(2*h - k^2*psi^2)/sqrt(A + C*psi'^2)", "inside the square root in the denominator"),
+         ("-sqrt(2*h - k^2*psi^2)/sqrt(A + m*R^2 + C*psi'^2)", "sign"),
+         ("(2*h - k^2*psi^2)/sqrt(A + m*R^2 + C*psi'^2)", "power")]),
     ("identity-1-19", "dxdot_dthetaprime"): (
         ["-J*xdot*theta'/(m + J*theta'^2)", "xdot*J*thetaprime/(-m - J*thetaprime**2)"],
         [("-J*theta'/(m + J*theta'^2)", "factor xdot"),
@@ -145,11 +145,11 @@ CASES = {
          ("m*k*theta*(1 + tan(theta)^2)", "paper prints"),
          ("m*k^2*theta^2*(1 + tan(theta)^2)", "power")]),
     ("nielsen-form", "total_derivative"): (
-        ["LIB:kepler:phi:total", "FN:kepler_total"],
+        ["LIB:kepler:theta:total", "FN:kepler_total"],
         [("FN:kepler_total_drop", "term"), ("FN:kepler_total_neg", "sign"),
          ("FN:kepler_total_sq", "power")]),
     ("nielsen-form", "nielsen"): (
-        ["LIB:kepler:phi:nielsen", "LIB:kepler:phi:whittaker"],
+        ["LIB:kepler:theta:nielsen", "LIB:kepler:theta:whittaker"],
         [("FN:kepler_nielsen_half", "constant factor"), ("FN:kepler_nielsen_neg", "sign"),
          ("FN:kepler_nielsen_sq", "power")]),
     ("chaplygin-sleigh", "L_star"): (
@@ -215,7 +215,7 @@ def _lib(spec):
         return list(red.accelerations().values())[0]
     if what == "ydot_star":
         return list(red.constraint_rates.values())[0]
-    if what == "total":      # d/dphi of L*(r(phi), r'(phi)): SymPy's own chain rule, (2.1)
+    if what == "total":      # d/dtheta of L*(r(theta), r'(theta)): SymPy's own chain rule, (2.1)
         return sp.diff(red.L_star, red.independent)
     if what == "nielsen":
         return red.nielsen_equations[0]
@@ -225,7 +225,7 @@ def _lib(spec):
 
 
 def _fn(spec):
-    red = wt.examples.kepler().reduce("phi", +1)
+    red = wt.examples.kepler().reduce("theta", +1)
     total = sp.diff(red.L_star, red.independent)
     r = red.coordinates[0]
     nielsen = red.nielsen_equations[0]
@@ -293,10 +293,10 @@ ALL_PARTS = [(ex, p) for ex in exercises() if ex in EXERCISES for p in parts(ex)
 
 # more correct forms: numbers of every kind where a number is asked
 MORE_GOOD = {
-    ("projectile-path", "y_pp"): ["g*(1 + yprime**2)*m/(2*(m*g*y - h))"],
+    ("projectile-path", "y_pp"): ["g_0*(1 + yprime**2)*m/(2*(m*g_0*y - h))"],
     ("kepler-orbit", "h"): ["m*mu*(e - 1)*(e + 1)/(2*p)"],
-    ("omega-and-energy", "energy"): ["(A + m*R**2)*thetadot**2/2 + C*thetadot**2*phi'**2/2 "
-                                     "+ k**2*phi**2*(cos(phi)**2 + sin(phi)**2)/2"],
+    ("omega-and-energy", "energy"): ["(A + m*R**2)*thetadot**2/2 + C*thetadot**2*psi'**2/2 "
+                                     "+ k**2*psi**2*(cos(psi)**2 + sin(psi)**2)/2"],
     ("identity-1-19", "dxdot_dthetaprime"): ["-xdot*J*thetaprime/(J*thetaprime**2 + m)"
                                              "*(sin(theta)**2 + cos(theta)**2)"],
     ("identity-1-19", "dLstar_dthetaprime"): ["J*xdot*theta' + b*sin(theta + pi/2)"],
@@ -326,17 +326,17 @@ MORE_GOOD = {
 DOMAIN = {
     ("projectile-path", "L_star"): ("DOM:y", "complex values"),
     ("projectile-path", "y_pp"): ("DOM:y", "part of the domain"),
-    ("projectile-path", "path"): ("x*tan(asin(sin(2*alpha))/2) - g*x^2/(2*v0^2*cos(alpha)^2)",
+    ("projectile-path", "path"): ("x*tan(asin(sin(2*alpha))/2) - g_0*x^2/(2*v0^2*cos(alpha)^2)",
                                   "alpha"),
     ("kepler-orbit", "L_star"): ("DOM:h", "part of the domain"),
     ("kepler-orbit", "r_pp"): ("DOM:h", "h"),
     ("kepler-orbit", "h"): ("-m*mu*Abs(1 - e^2)/(2*p)", "e"),
-    ("omega-and-energy", "Omega"): ("thetadot^2*(A + m*R^2 + C*phi'^2)/2 - "
-                                    "k^2*asin(sin(phi))^2/2", "phi"),
-    ("omega-and-energy", "energy"): ("thetadot^2*(A + m*R^2 + C*phi'^2)/2 + "
-                                     "k^2*asin(sin(phi))^2/2", "phi"),
-    ("omega-and-energy", "thetadot"): ("sqrt(2*h - k^2*asin(sin(phi))^2)/"
-                                       "sqrt(A + m*R^2 + C*phi'^2)", "part of the domain"),
+    ("omega-and-energy", "Omega"): ("thetadot^2*(A + m*R^2 + C*psi'^2)/2 - "
+                                    "k^2*asin(sin(psi))^2/2", "psi"),
+    ("omega-and-energy", "energy"): ("thetadot^2*(A + m*R^2 + C*psi'^2)/2 + "
+                                     "k^2*asin(sin(psi))^2/2", "psi"),
+    ("omega-and-energy", "thetadot"): ("sqrt(2*h - k^2*asin(sin(psi))^2)/"
+                                       "sqrt(A + m*R^2 + C*psi'^2)", "part of the domain"),
     ("identity-1-19", "dxdot_dthetaprime"): ("DOM:thetaprime", "part of the domain"),
     ("identity-1-19", "dLstar_dthetaprime"): ("J*xdot*theta' + b*sqrt(1 - sin(theta)^2)",
                                               "part of the domain"),
@@ -555,7 +555,7 @@ def test_wrong_symbols_and_forbidden_dependence():
     assert f.status == "invalid" and "zeta" in f.message
     f = check("sledge-L-star", "sqrt(2*h - k^2*theta^2)*sqrt(m + J*thetadot^2)", part="L_star")
     assert not f.ok and "thetadot" in f.message and "should not" in f.message
-    f = check("projectile-path", "x*tan(alpha) - g*x^2/(4*h/m*cos(alpha)^2)", part="path")
+    f = check("projectile-path", "x*tan(alpha) - g_0*x^2/(4*h/m*cos(alpha)^2)", part="path")
     assert not f.ok and "h" in f.message and "should not" in f.message
     f = check("kepler-orbit", 3, part="h")
     assert not f.ok and "number" in f.message
@@ -626,10 +626,10 @@ def test_expected_answers_solve_the_library_equations():
     assert path.subs(x, 0) == 0 and sp.simplify(path.diff(x).subs(x, 0) - sp.tan(alpha)) == 0
     ex = EXERCISES["kepler-orbit"]
     names, _, ps = ex.build()
-    r, rp, phi, h, p, e = (names[n] for n in "r rprime phi h p e".split())
-    conic = p / (1 + e * sp.cos(phi))
-    on = {r: conic, rp: conic.diff(phi), h: ps["h"].expected}
-    assert sp.simplify(conic.diff(phi, 2) - ps["r_pp"].expected.subs(on)) == 0
+    r, rp, theta, h, p, e = (names[n] for n in "r rprime theta h p e".split())
+    conic = p / (1 + e * sp.cos(theta))
+    on = {r: conic, rp: conic.diff(theta), h: ps["h"].expected}
+    assert sp.simplify(conic.diff(theta, 2) - ps["r_pp"].expected.subs(on)) == 0
     ex = EXERCISES["sledge-reduced-equation"]
     names, _, ps = ex.build()
     th, m, k = (names[n] for n in "theta m k".split())

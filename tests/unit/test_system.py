@@ -6,7 +6,8 @@ from sympy.physics.mechanics import dynamicsymbols
 import whittaker_teach as wt
 
 T = dynamicsymbols._t
-m, J, k, g = sp.symbols("m J k g", positive=True)
+m, J, k = sp.symbols("m J k", positive=True)
+g = sp.Symbol("g_0", positive=True)   # gravity (g counts the constraints)
 x, th, y = dynamicsymbols("x theta y")
 
 

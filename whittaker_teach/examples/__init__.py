@@ -52,7 +52,7 @@ class Example:
 _CATALOGUE = [
     Example("sledge", "Mei's section 3: a sledge with a torsional spring", "x"),
     Example("projectile", "a projectile; the path y(x) is a parabola", "x"),
-    Example("kepler", "the Kepler problem; the orbit r(phi) is a conic", "phi"),
+    Example("kepler", "the Kepler problem; the orbit r(theta) is a conic", "theta"),
     Example("offset_sleigh", "the Chaplygin sleigh, centre of mass off the contact "
             "point", "x"),
     Example("rolling_disk", "a vertical disk rolling without slipping", "theta"),

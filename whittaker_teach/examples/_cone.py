@@ -17,9 +17,9 @@ __all__ = ["cone_particle"]
 
 
 def cone_particle():
-    """L = m/2 (xdot^2 + ydot^2 + zdot^2) - m g y with zdot = a sqrt(xdot^2 + ydot^2)."""
+    """L = m/2 (xdot^2 + ydot^2 + zdot^2) - m g_0 y with zdot = a sqrt(xdot^2 + ydot^2)."""
     t = dynamicsymbols._t
-    m, g, a = sp.symbols("m g a", positive=True)
+    m, g, a = sp.symbols("m g_0 a", positive=True)   # g_0: gravity (g counts constraints)
     x, y, z = dynamicsymbols("x y z")
     L = m / 2 * (x.diff(t)**2 + y.diff(t)**2 + z.diff(t)**2) - m * g * y
     dep = {z.diff(t): a * sp.sqrt(x.diff(t)**2 + y.diff(t)**2)}

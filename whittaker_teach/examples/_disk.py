@@ -1,11 +1,11 @@
 """A vertical disk of radius R rolling without slipping on a horizontal plane,
-with a torsional spring on its heading phi.  The contact point (x, y) moves
-with xdot = R thetadot cos(phi), ydot = R thetadot sin(phi); the rolling
+with a torsional spring on its heading psi.  The contact point (x, y) moves
+with xdot = R thetadot cos(psi), ydot = R thetadot sin(psi); the rolling
 angle theta takes the place of time.
 
 >>> from whittaker_teach.examples import rolling_disk
 >>> rolling_disk().independent_coordinates
-[phi(t), theta(t)]
+[psi(t), theta(t)]
 """
 
 import sympy as sp
@@ -20,8 +20,8 @@ def rolling_disk():
     """Mass m, radius R, moments of inertia A (rolling axis) and C (vertical), spring k."""
     t = dynamicsymbols._t
     m, R, A, C, k = sp.symbols("m R A C k", positive=True)
-    x, y, phi, th = dynamicsymbols("x y phi theta")
+    x, y, psi, th = dynamicsymbols("x y psi theta")
     L = (m / 2 * (x.diff(t)**2 + y.diff(t)**2) + A / 2 * th.diff(t)**2
-         + C / 2 * phi.diff(t)**2 - k**2 * phi**2 / 2)
-    dep = {x.diff(t): R * th.diff(t) * sp.cos(phi), y.diff(t): R * th.diff(t) * sp.sin(phi)}
-    return ChaplyginSystem(L, [x, y, phi, th], dependent=dep, name="rolling_disk")
+         + C / 2 * psi.diff(t)**2 - k**2 * psi**2 / 2)
+    dep = {x.diff(t): R * th.diff(t) * sp.cos(psi), y.diff(t): R * th.diff(t) * sp.sin(psi)}
+    return ChaplyginSystem(L, [x, y, psi, th], dependent=dep, name="rolling_disk")

@@ -1,10 +1,10 @@
 """The Kepler problem: a particle in the field -mu m / r.  With the polar angle
-phi in place of t, Whittaker's equation (1.27) has the conics r = p/(1 + e cos phi)
+theta in place of t, Whittaker's equation (1.27) has the conics r = p/(1 + e cos theta)
 among its solutions.
 
 >>> from whittaker_teach.examples import kepler
->>> kepler().reduce("phi").independent
-phi
+>>> kepler().reduce("theta").independent
+theta
 """
 
 import sympy as sp
@@ -16,10 +16,11 @@ __all__ = ["kepler"]
 
 
 def kepler():
-    """L = m/2 (rdot^2 + r^2 phidot^2) + mu m / r, r > 0: holonomic."""
+    """L = m/2 (rdot^2 + r^2 thetadot^2) + mu m / r, r > 0: holonomic (theta: the polar
+    angle, as the book writes it; phi is kept for the constraint functions)."""
     t = dynamicsymbols._t
     m, mu = sp.symbols("m mu", positive=True)
     r = dynamicsymbols("r", positive=True)
-    phi = dynamicsymbols("phi")
-    L = m / 2 * (r.diff(t)**2 + r**2 * phi.diff(t)**2) + mu * m / r
-    return ChaplyginSystem(L, [r, phi], name="kepler")
+    theta = dynamicsymbols("theta")
+    L = m / 2 * (r.diff(t)**2 + r**2 * theta.diff(t)**2) + mu * m / r
+    return ChaplyginSystem(L, [r, theta], name="kepler")

@@ -31,7 +31,7 @@ def section3_steps(red):
     xd, thd, yd = (S.qd[c] for c in S.coordinates)
     thp, thpp = red._qp[S.coordinates[1]], red._qpp[S.coordinates[1]]
     v, h, s = red._v, red.h, red.direction
-    C, a, phi, t = sp.Symbol("C", positive=True), sp.Symbol("a"), sp.Symbol("phi"), sp.Symbol("t")
+    C, a, phi, t = sp.Symbol("C", positive=True), sp.Symbol("a"), sp.Symbol("phi_0"), sp.Symbol("t")
     sec2 = 1 + sp.tan(th)**2
     smp, smp_t = red._sample, S._sample_time
 
@@ -82,10 +82,10 @@ def section3_steps(red):
         "3.9", r"the form shown equals (1.26) (the OCR's last term lacks the root of "
         r"$2h - k^2\theta^2$ and the factor $1 + \tan^2\theta$)", printed, red._eqs[0], smp)))
     qpp = red._tidy_accelerations()[thpp]
-    (cleared,) = cleared_forms(red)      # J R theta'' - N, with theta''_(1.26b) = N / (J R)
+    (cleared,) = cleared_forms(red)      # J R theta'' - N, with theta''_[1.26b] = N / (J R)
     printed = J * R * thpp + J * (-R * sp.tan(th) + k**2 * th) * thp**2 + m * k**2 * th * sec2
     st.append(Step("3.10", r"(1.26) cleared of denominators: $J(2h - k^2\theta^2)\,(\theta'' "
-                   r"- \theta''_{(1.26b)})$", [eq(cleared, 0)], check_identity(
+                   r"- \theta''_{[1.26b]})$", [eq(cleared, 0)], check_identity(
         "3.10", r"the cleared equation equals the printed (3.10) with "
         r"$mk^2\theta\,(1 + \tan^2\theta)$",
         cleared, printed, smp)))

@@ -58,9 +58,9 @@ XDOT_NOTE = "the direction of travel is xdot > 0, so take the root with the + si
 # ---------------------------------------------------------------- projectile-path
 def _projectile_path():
     import whittaker_teach as wt
-    names = Names(_syms("x y yprime yprimeprime h m+ g+ v0+ alpha"))
+    names = Names(_syms("x y yprime yprimeprime h m+ g_0+ v0+ alpha"))   # g_0: gravity
     x, y, yp, ypp, h, m, g, v0, alpha = (names[n] for n in
-                                         "x y yprime yprimeprime h m g v0 alpha".split())
+                                         "x y yprime yprimeprime h m g_0 v0 alpha".split())
     red = wt.examples.projectile().reduce("x", +1)
     dom = Domain({x: (0.0, 3.0), y: (-1.0, 1.0), yp: SLOPE, ypp: (-1.0, 1.0), h: ENERGY,
                   m: POSITIVE, g: POSITIVE, v0: POSITIVE, alpha: (0.001, 1.5707)},
@@ -71,7 +71,7 @@ def _projectile_path():
              plain(red.L_star, names), (y, yp, h, m, g), sign_note=XDOT_NOTE,
              why_not={"x": "L does not depend on x", "v0": "L* is written with the energy h",
                       "alpha": "L* is written with the energy h"},
-             success="L* = sqrt(2(h - m g y)) sqrt(m (1 + y'^2)), the root for xdot > 0 (1.16)."),
+             success="L* = sqrt(2(h - m g_0 y)) sqrt(m (1 + y'^2)), the root for xdot > 0 (1.16)."),
         Part("y_pp", "y'' solved from Whittaker's equation (1.27)",
              plain(_one(red.accelerations()), names), (y, yp, h, m, g),
              why_not={"yprimeprime": "solve the equation for y''"},
@@ -80,7 +80,7 @@ def _projectile_path():
              "at angle alpha", path, (x, g, v0, alpha),
              why_not={"h": "use h = m v0^2/2", "m": "the path does not depend on the mass",
                       "y": "y(x) is the answer", "yprime": "use y'(0) = tan(alpha)"},
-             success="The parabola y = x tan(alpha) - g x^2/(2 v0^2 cos^2(alpha)): it solves "
+             success="The parabola y = x tan(alpha) - g_0 x^2/(2 v0^2 cos^2(alpha)): it solves "
              "(1.27) with h = m v0^2/2, y(0) = 0, y'(0) = tan(alpha)."),
     ]
     return names, dom, parts
@@ -89,29 +89,29 @@ def _projectile_path():
 # ---------------------------------------------------------------- kepler-orbit
 def _kepler_orbit():
     import whittaker_teach as wt
-    names = Names(_syms("r+ rprime rprimeprime phi h m+ mu+ p+ e"))
-    r, rp, rpp, phi, h, m, mu, p, e = (names[n] for n in
-                                       "r rprime rprimeprime phi h m mu p e".split())
-    red = wt.examples.kepler().reduce("phi", +1)
+    names = Names(_syms("r+ rprime rprimeprime theta h m+ mu+ p+ e"))
+    r, rp, rpp, theta, h, m, mu, p, e = (names[n] for n in
+                                       "r rprime rprimeprime theta h m mu p e".split())
+    red = wt.examples.kepler().reduce("theta", +1)
     acc = plain(_one(red.accelerations()), names)
-    # the conic at phi = pi/2 (r = p, r' = p e, r'' = 2 p e^2) in (1.27) fixes h
+    # the conic at theta = pi/2 (r = p, r' = p e, r'' = 2 p e^2) in (1.27) fixes h
     (h_conic,) = sp.solve(2 * p * e**2 - acc.xreplace({r: p, rp: p * e}), h)
     # e >= 0: ellipses, the parabola and hyperbolas
-    dom = Domain({r: (0.5, 3.0), rp: SLOPE, rpp: (-1.0, 1.0), phi: TURN, h: (-1.0, 3.0),
+    dom = Domain({r: (0.5, 3.0), rp: SLOPE, rpp: (-1.0, 1.0), theta: TURN, h: (-1.0, 3.0),
                   m: POSITIVE, mu: POSITIVE, p: POSITIVE, e: (0.0, 3.0)},
                  conditions=(h + m * mu / r,))
     parts = [
-        Part("L_star", "L* (1.16) for the Kepler problem with phi in place of t",
+        Part("L_star", "L* (1.16) for the Kepler problem with theta in place of t",
              plain(red.L_star, names), (r, rp, h, m, mu),
-             sign_note="phi increases along the orbit (phidot > 0): take the + root",
-             why_not={"phi": "L does not depend on phi"},
+             sign_note="theta increases along the orbit (thetadot > 0): take the + root",
+             why_not={"theta": "L does not depend on theta"},
              success="L* = sqrt(2 h + 2 m mu/r) sqrt(m (r^2 + r'^2)) (1.16)."),
         Part("r_pp", "r'' solved from Whittaker's equation (1.27)", acc, (r, rp, h, m, mu),
              why_not={"rprimeprime": "solve the equation for r''"},
              success="r'' from (1.27)."),
-        Part("h", "the energy h for which the conic r = p/(1 + e cos(phi)) solves (1.27)",
+        Part("h", "the energy h for which the conic r = p/(1 + e cos(theta)) solves (1.27)",
              h_conic, (m, mu, p, e),
-             why_not={"phi": "h is a constant", "r": "h is a constant of the orbit",
+             why_not={"theta": "h is a constant", "r": "h is a constant of the orbit",
                       "rprime": "h is a constant of the orbit"},
              success="h = -m mu (1 - e^2)/(2 p), for every e >= 0: negative for an ellipse "
              "(e < 1), zero for a parabola (e = 1), positive for a hyperbola (e > 1)."),
@@ -122,30 +122,30 @@ def _kepler_orbit():
 # ---------------------------------------------------------------- omega-and-energy
 def _omega_and_energy():
     import whittaker_teach as wt
-    names = Names(_syms("theta thetadot phi phiprime phidot h m+ R+ A+ C+ k+"))
+    names = Names(_syms("theta thetadot psi psiprime psidot h m+ R+ A+ C+ k+"))
     th, thd, ph, php, phd, h, m, R, A, C, k = (
-        names[n] for n in "theta thetadot phi phiprime phidot h m R A C k".split())
+        names[n] for n in "theta thetadot psi psiprime psidot h m R A C k".split())
     red = wt.examples.rolling_disk().reduce("theta", +1)
     Omega = plain(red.Omega, names)
     dom = Domain({th: TURN, thd: SPEED, ph: TURN, php: SLOPE, phd: SLOPE, h: ENERGY,
                   m: POSITIVE, R: POSITIVE, A: POSITIVE, C: POSITIVE, k: POSITIVE},
                  conditions=(2 * h - k**2 * ph**2,))
-    no_phidot = "use (1.5): phidot = thetadot phi'"
+    no_psidot = "use (1.5): psidot = thetadot psi'"
     parts = [
-        Part("Omega", "Omega (1.6): L~ with phidot = thetadot phi'", Omega,
-             (thd, ph, php, m, R, A, C, k), why_not={"phidot": no_phidot,
+        Part("Omega", "Omega (1.6): L~ with psidot = thetadot psi'", Omega,
+             (thd, ph, php, m, R, A, C, k), why_not={"psidot": no_psidot,
                                                      "h": "Omega is L~, not the energy"},
-             success="Omega = thetadot^2 (A + m R^2 + C phi'^2)/2 - k^2 phi^2/2 (1.6)."),
+             success="Omega = thetadot^2 (A + m R^2 + C psi'^2)/2 - k^2 psi^2/2 (1.6)."),
         Part("energy", "the left-hand side of (1.13), thetadot dOmega/dthetadot - Omega",
              sp.expand(thd * Omega.diff(thd) - Omega), (thd, ph, php, m, R, A, C, k),
-             why_not={"phidot": no_phidot, "h": "give the left-hand side of (1.13); its value "
+             why_not={"psidot": no_psidot, "h": "give the left-hand side of (1.13); its value "
                       "is h"},
-             success="The energy (1.13): kinetic plus potential, written with phi'."),
+             success="The energy (1.13): kinetic plus potential, written with psi'."),
         Part("thetadot", "thetadot (1.12): (1.13) solved for thetadot > 0",
              plain(red.velocity, names), (ph, php, h, m, R, A, C, k),
              sign_note="the disk rolls forward, thetadot > 0: take the + root",
-             why_not={"thetadot": "solve (1.13) for thetadot", "phidot": no_phidot},
-             success="thetadot = sqrt(2h - k^2 phi^2)/sqrt(A + m R^2 + C phi'^2) (1.12)."),
+             why_not={"thetadot": "solve (1.13) for thetadot", "psidot": no_psidot},
+             success="thetadot = sqrt(2h - k^2 psi^2)/sqrt(A + m R^2 + C psi'^2) (1.12)."),
     ]
     return names, dom, parts
 
@@ -290,17 +290,17 @@ def _sledge_reduced_equation():
 # ---------------------------------------------------------------- nielsen-form
 def _nielsen_form():
     import whittaker_teach as wt
-    names = Names(_syms("r+ rprime rprimeprime phi h m+ mu+"))
-    r, rp, rpp, phi, h, m, mu = (names[n] for n in "r rprime rprimeprime phi h m mu".split())
-    red = wt.examples.kepler().reduce("phi", +1)
+    names = Names(_syms("r+ rprime rprimeprime theta h m+ mu+"))
+    r, rp, rpp, theta, h, m, mu = (names[n] for n in "r rprime rprimeprime theta h m mu".split())
+    red = wt.examples.kepler().reduce("theta", +1)
     Ls = plain(red.L_star, names)
-    dL = _total(Ls, phi, [(r, rp, rpp)])                                  # (2.1)
-    dom = Domain({r: (0.5, 3.0), rp: SLOPE, rpp: (-1.0, 1.0), phi: TURN, h: (-1.0, 3.0),
+    dL = _total(Ls, theta, [(r, rp, rpp)])                                  # (2.1)
+    dom = Domain({r: (0.5, 3.0), rp: SLOPE, rpp: (-1.0, 1.0), theta: TURN, h: (-1.0, 3.0),
                   m: POSITIVE, mu: POSITIVE}, conditions=(h + m * mu / r,))
     parts = [
-        Part("total_derivative", "dL*/dphi (2.1), with r'' in it", dL, (r, rp, rpp, h, m, mu),
-             success="(2.1): dL*/dphi = dL*/dr' r'' + dL*/dr r' (+ dL*/dphi = 0 here)."),
-        Part("nielsen", "the left-hand side of (2.4): d/dr'(dL*/dphi) - 2 dL*/dr",
+        Part("total_derivative", "dL*/dtheta (2.1), with r'' in it", dL, (r, rp, rpp, h, m, mu),
+             success="(2.1): dL*/dtheta = dL*/dr' r'' + dL*/dr r' (+ dL*/dtheta = 0 here)."),
+        Part("nielsen", "the left-hand side of (2.4): d/dr'(dL*/dtheta) - 2 dL*/dr",
              plain(red.nielsen_equations[0], names), (r, rp, rpp, h, m, mu),
              success="(2.4) for the Kepler problem; it equals the left-hand side of (1.26)."),
     ]
