@@ -42,7 +42,7 @@ NOTEBOOK_DIRS := book exercises
 
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 
-.PHONY: help setup sysdeps mathjax lite-fetch lite serve bench-lite book site pdf derive test unit slow doctest nbval browser screenshots notebooks exercises bench clean
+.PHONY: help setup sysdeps mathjax lite-fetch lite serve bench-lite book site pdf derive test unit slow doctest nbval browser screenshots notebooks exercises figures bench clean
 
 help:
 	@sed -n '3,18p' Makefile | sed 's/^# \{0,1\}//'
@@ -172,6 +172,11 @@ screenshots: setup sysdeps
 # ---------------------------------------------------------------- notebooks
 notebooks: setup
 	PYTHONHASHSEED=0 $(PYTHON) scripts/execute_notebooks.py $(NOTEBOOK_DIRS)
+
+# The drawings of the systems (book/figures/systems/<name>.py writes <name>.svg beside
+# itself, deterministically; a unit test fails when a stored SVG is out of date).
+figures: setup
+	@for f in book/figures/systems/*.py; do echo "$$f"; PYTHONHASHSEED=0 MPLBACKEND=svg $(PYTHON) "$$f"; done
 
 # The exercise notebooks (student and solution) from their sources in
 # exercises/src/; only changed ones are re-executed (EXERCISES_ARGS=--all: every one).

@@ -6,12 +6,16 @@ notebook with those constructs turned into plain Markdown/HTML:
 ==============================  ==================================================
 ``{exercise}`` (``:label:``)    a bold "Exercise 4.2" paragraph
 ``{solution} label``            ``<details><summary>Solution …</summary>…</details>``
+``{exercise-start}``/``-end``   as ``{exercise}`` / nothing
+``{solution-start}``/``-end``   a bold "Solution to …" / "(end of the solution)"
+                                (the solution's code cells lie between them)
 ``{admonition} Title``          a block quote with the title in bold
 ``{figure} path``               an image with its caption
 ``{doc}`target```               a link to that notebook (text only for a page that
                                 is not a notebook, e.g. the glossary)
 ``{ref}`label```                "Exercise 4.2" or the section title, linked
 ``{term}`text <term>```         the text
+``{numref}`fig-label```         "the figure" (or its text, without the number)
 ``{cite:p}`key```               (Author Year), from book/references.bib
 ``(label)=``                    removed
 ==============================  ==================================================
@@ -113,7 +117,8 @@ class Index:
             h1 = re.search(r"^# (.+)$", src, re.M)
             if h1 and title == doc:
                 title = h1.group(1).strip()
-            for m in re.finditer(r"^(`{3,}|:{3,})\{exercise\}.*\n((?::[\w-]+:.*\n)*)", src, re.M):
+            for m in re.finditer(r"^(`{3,}|:{3,})\{exercise(?:-start)?\}.*\n((?::[\w-]+:.*\n)*)",
+                                 src, re.M):
                 n += 1
                 label = re.search(r"^:label:\s*(\S+)", m.group(2), re.M)
                 if label:
@@ -189,7 +194,12 @@ def _closes(line, fence):
 
 
 def _directive(name, arg, options, body, doc, index, state):
-    if name == "exercise":
+    if name in ("exercise-end", "solution-end"):      # gated directives: the end marker
+        return "*(end of the solution)*" if name == "solution-end" else ""
+    if name == "solution-start":       # its code cells follow: no <details> across cells
+        target = index.labels.get(arg, (doc, None))[1] if arg else None
+        return f"**Solution to {target}.**" if target else "**Solution.**"
+    if name in ("exercise", "exercise-start"):
         state["exercise"] += 1
         label = options.get("label")
         title = (index.labels.get(label, (doc, None))[1] if label else None) \
@@ -206,7 +216,8 @@ def _directive(name, arg, options, body, doc, index, state):
         return f"> **{title}**\n>\n{quoted}"
     if name in ("figure", "image"):
         caption = body.strip()
-        alt = caption.split("\n\n")[0].replace("\n", " ") or Path(arg).stem
+        alt = (options.get("alt") or caption.split("\n\n")[0].replace("\n", " ")
+               or Path(arg).stem)
         alt = re.sub(r"[\[\]]", "", alt)
         return f"![{alt[:120]}]({arg})" + (f"\n\n*{caption}*" if caption and name == "figure" else "")
     if name in ("math",):
@@ -230,6 +241,8 @@ def _convert_roles(text, doc, index):
             return index.link(doc, to, text_ or label_text)
         if name in ("term", "abbr", "index"):
             return text_ or target
+        if name == "numref":        # figures are not numbered in the lite copies
+            return (text_ or "the figure").replace("{number}", "").replace("  ", " ").strip()
         if name.startswith("cite"):
             parts = [index.bib.get(k.strip(), (k.strip(), "")) for k in target.split(",")]
             if name == "cite:t":

@@ -2,7 +2,9 @@
 # The system programs the site tests and the PDF need, from Debian:
 #   chromium       headless browser (browser test, `make pdf`), at /usr/bin/chromium
 #   poppler-utils  pdftotext / pdfimages / pdffonts (the PDF test)
-#   fonts-noto-cjk the glossary's and references' Chinese in the PDF (embedded by Chromium)
+#   fonts-wqy-zenhei the Chinese of the glossary and references in the PDF (a TrueType
+#                  CJK font: Chromium embeds it as a named font; Noto CJK, a CFF font,
+#                  would be drawn as unnamed Type 3 glyphs)
 #   bubblewrap     bwrap, the sandbox of each graded submission (`grade`)
 # Installed with apt-get when running as root (or with passwordless sudo);
 # otherwise the script fails and says what to install.
@@ -15,7 +17,7 @@ else
     [[ -x /usr/bin/chromium ]] || command -v chromium >/dev/null 2>&1 || missing+=(chromium)
 fi
 command -v pdftotext >/dev/null 2>&1 && command -v pdfimages >/dev/null 2>&1 || missing+=(poppler-utils)
-fc-list :lang=zh family 2>/dev/null | grep -q "Noto Sans CJK" || missing+=(fonts-noto-cjk)
+fc-list 2>/dev/null | grep -q "WenQuanYi Zen Hei" || missing+=(fonts-wqy-zenhei)
 command -v bwrap >/dev/null 2>&1 || missing+=(bubblewrap)
 
 if ((${#missing[@]} == 0)); then

@@ -145,3 +145,24 @@ def test_figures_are_vector_graphics(pdf):
     # the figures are SVG and the print style draws no shadows (which Chromium
     # would rasterise): a raster image here is a figure that is not vector
     assert not listing, "raster images in the PDF:\n" + "\n".join(listing[:10])
+
+
+# ---------------------------------------------------------------- Chinese (issue 23)
+CJK = re.compile(r"[\u3400-\u4dbf\u4e00-\u9fff]+")
+
+
+def test_pdf_embeds_a_cjk_font(pdf):
+    out = subprocess.run([_need("pdffonts"), str(pdf)], check=True, capture_output=True,
+                         text=True).stdout
+    cjk = [line for line in out.splitlines() if re.search(r"WenQuanYi|CJK|SourceHan", line)]
+    assert cjk, f"no CJK font in the PDF (apt-get install fonts-wqy-zenhei):\n{out}"
+    assert all(" yes " in line for line in cjk), f"a CJK font is not embedded:\n{out}"
+
+
+def test_pdf_prints_the_glossarys_chinese(text):
+    glossary = (ROOT / "book" / "glossary.md").read_text(encoding="utf-8")
+    terms = sorted(set(CJK.findall(glossary)))
+    assert len(terms) >= 20
+    flat = re.sub(r"\s+", "", text)
+    missing = [t for t in terms if t not in flat]
+    assert not missing, f"Chinese terms of the glossary missing from the PDF text: {missing}"

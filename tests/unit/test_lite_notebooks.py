@@ -137,3 +137,14 @@ def test_show_renders_maths_in_the_pyodide_kernel(monkeypatch):
     wt.examples.sledge().steps.only("1.1").show()
     captions = ["text/html", "text/markdown", "text/plain"]
     assert shown == [captions, captions, "Math"]     # title, the step's caption, (1.1)
+
+
+def test_gated_exercises_and_solutions_become_plain_markdown():
+    idx = ln.Index(labels={"ex-a": ("book/04-x", "Exercise 4.5")})
+    start = ln.convert_markdown(":::{solution-start} ex-a\n:::", "book/04-x", idx)
+    end = ln.convert_markdown(":::{solution-end}\n:::", "book/04-x", idx)
+    assert start == "**Solution to Exercise 4.5.**" and end == "*(end of the solution)*"
+    fig = ln.convert_markdown(":::{figure} f.svg\n:alt: a sledge seen from above\n\nCap.\n:::",
+                                "book/03-x", idx)
+    assert fig.startswith("![a sledge seen from above](f.svg)") and "{" not in fig
+    assert ln.convert_markdown("see {numref}`fig-a`", "book/03-x", idx) == "see the figure"
