@@ -90,7 +90,8 @@ def main(argv=None):
     b.add_argument("--repeat", type=int, default=3, help="fresh processes per measurement")
     b.add_argument("--scale", action="store_true",
                    help="derivation: the families of n coordinates (bench.family)")
-    b.add_argument("--n", default="2..8", help="derivation --scale: the range of n, e.g. 2..4")
+    b.add_argument("--n", default="2..8",
+                   help="derivation --scale: the range of n, e.g. 2..4, or a list, 8,12,24")
     b.add_argument("--family", choices=("both", "nonholonomic", "holonomic", "chain"),
                    default="both", help="derivation --scale: which family (chain: the "
                    "sleighs, against LagrangesMethod and KanesMethod)")

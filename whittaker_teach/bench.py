@@ -464,8 +464,11 @@ def growth(rows, key):
 
 
 def scale_main(args):
-    lo, _, hi = args.n.partition("..")
-    ns = range(int(lo), int(hi or lo) + 1)
+    if "," in args.n:                   # a list: --n 8,12,24
+        ns = [int(v) for v in args.n.split(",")]
+    else:
+        lo, _, hi = args.n.partition("..")
+        ns = range(int(lo), int(hi or lo) + 1)
     repeat = max(1, getattr(args, "repeat", 1))
     print("CPU seconds. reduce: build, reduce, (1.26) and q'' solved; verify: every check;\n"
           "peer: LagrangesMethod forming and solving; ratio = (reduce + verify) / peer;\n"

@@ -22,12 +22,17 @@ caller uses SymPy's own functions.
 
 import sympy as sp
 
-__all__ = ["NotPolynomial", "fraction", "factor", "groups", "lowest_terms", "vanishes"]
+__all__ = ["NotPolynomial", "TooLarge", "fraction", "factor", "groups", "lowest_terms", "vanishes"]
 
 
 class NotPolynomial(Exception):
     """The walk met something it does not treat as a generator or a rational number
     (the caller falls back to SymPy's own functions)."""
+
+
+class TooLarge(Exception):
+    """:func:`fraction`'s numerator and denominator are too large for their gcd to be
+    taken within its ``limit`` (the caller keeps the expression as it is)."""
 
 
 def _generators(expr, number_roots=False):
@@ -219,10 +224,12 @@ def _merge_roots(walk):
             walk.memo[r] = same
 
 
-def fraction(expr):
+def fraction(expr, limit=None):
     """Numerator and denominator of ``expr`` over the integers, their gcd removed (the
     roots and functions as generators), by one walk; ``NotPolynomial`` if the walk
-    cannot treat ``expr``.
+    cannot treat ``expr``; ``TooLarge`` if ``limit`` is given and the product of their
+    numbers of terms exceeds it (a gcd of two large multivariate polynomials can take
+    minutes).
 
     >>> x, y = sp.symbols("x y")
     >>> fraction(x/sp.sqrt(x + y)/sp.sqrt(x + y) + y/(x + y))
@@ -237,6 +244,8 @@ def fraction(expr):
     cq, q = q.clear_denoms()
     Z = _ring(R.ngens, "ZZ")
     p, q = (p * cq).set_ring(Z), (q * cp).set_ring(Z)
+    if limit is not None and len(p) * len(q) > limit:
+        raise TooLarge(expr)
     _, p, q = p.cofactors(q)            # the gcd, and both sides divided by it
     if any(m[walk.index[r]] for r in roots for m in q.itermonoms()):
         raise NotPolynomial(expr)   # a root left below: ``together`` may cancel it, with

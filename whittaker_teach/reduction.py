@@ -107,6 +107,11 @@ def _tidy_coefficient(e):
     return sp.expand(e)
 
 
+#: above this many equations (1.26), q'' is read from the accelerations of (1.4)
+#: (``Reduction._accelerations``) instead of a symbolic LU of the full matrix d(1.26)/dq''
+SOLVE_NU_LIMIT = 3
+
+
 class Reduction:
     """The generalized Whittaker equations of a system, with q_eps = ``coordinate``.
 
@@ -256,15 +261,38 @@ class Reduction:
         return e
 
     def _accelerations(self):
+        """q''_nu solved from (1.26).  Up to ``SOLVE_NU_LIMIT`` equations by LU on their
+        matrix d(1.26)/d(q''); beyond, the matrix is only shown regular at a sampled
+        point (as for a solve) and q'' is read from the accelerations of (1.4), which
+        are cheaper to solve (the time-domain mass matrix is sparse where the reduced
+        one, through the roots of L*, is full): q''_nu = (qddot_nu - q'_nu qddot_eps) /
+        qdot_eps**2 with (1.5) and (1.12).  Either way step [1.26b] checks that (1.26)
+        vanishes at the q'' found."""
         if "acc" not in self._cache:
             qpp = [self._qpp[c] for c in self._nus]
             eqs = sp.Matrix(self._eqs)
             M = sp.Matrix([[self._d(e, a) for a in qpp] for e in eqs])
-            memo = {}
-            rest = sp.Matrix([zeroed(e, qpp, memo) for e in eqs])
-            sol = self.system._solve(M, rest, "d(1.26)/d(q''_nu)", self._sample)
+            if len(qpp) > SOLVE_NU_LIMIT:
+                self.system._require_regular(M, "d(1.26)/d(q''_nu)", self._sample)
+                sol = self._accelerations_from_time()
+            else:
+                memo = {}
+                rest = sp.Matrix([zeroed(e, qpp, memo) for e in eqs])
+                sol = self.system._solve(M, rest, "d(1.26)/d(q''_nu)", self._sample)
             self._cache["acc"] = dict(zip(qpp, sol))
         return self._cache["acc"]
+
+    def _accelerations_from_time(self):
+        """q''_nu from the accelerations of (1.4) under (1.5) and (1.12), one per q_nu."""
+        S, vs = self.system, self._vstar
+        acc = S._accelerations()
+        sub = {S.qd[self._eps]: vs}
+        sub.update({S.qd[c]: vs * self._qp[c] for c in self._nus})
+        memo = {}
+        a_eps = substitute(acc[S.qdd[self._eps]], sub, memo)
+        inv = power(vs, -2)
+        return [(substitute(acc[S.qdd[c]], sub, memo) - self._qp[c] * a_eps) * inv
+                for c in self._nus]
 
     def _tidy_accelerations(self):
         """q''_nu as one fraction each, to read (``rewrite.rational``); the numerator and

@@ -26,6 +26,10 @@ RATIONAL_OPS_LIMIT = 320
 SWELL_LIMIT = 50000
 #: Coefficients larger than this are left expanded rather than factored.
 FACTOR_LIMIT = 200
+#: a fraction whose numerator and denominator have more than this many terms multiplied
+#: is not brought to lowest terms (:func:`rational_parts` gives None: too large to read
+#: as one fraction); the examples' largest product is 232
+FRACTION_TERMS_LIMIT = 4000
 
 
 def _ops_above(expr, limit):
@@ -160,7 +164,10 @@ def rational_parts(expr, symbols=()):
     ``RATIONAL_OPS_LIMIT`` operations."""
     if _ops_above(expr, RATIONAL_OPS_LIMIT):
         return None
-    num, den = _cancelled(expr)
+    try:
+        num, den = _cancelled(expr)
+    except polywalk.TooLarge:
+        return None
     return collected(num, symbols), pythagoras(factored(den))
 
 
@@ -175,7 +182,7 @@ def _cancelled(expr):
     from sympy.polys.polyerrors import PolynomialError
     from sympy.polys.rings import sring
     try:
-        return polywalk.fraction(expr)
+        return polywalk.fraction(expr, FRACTION_TERMS_LIMIT)
     except polywalk.NotPolynomial:
         pass
     num, den = sp.fraction(sp.together(expr))
