@@ -3,12 +3,12 @@
 The path is the exact motion of section 3 of the paper, (3.12)-(3.15):
 theta = a cos(omega t), xdot = C cos(theta), ydot = C sin(theta), here with
 a = 0.9, C = omega = 1, summed by the trapezoidal rule (only for drawing).
-On it, the sledge at one instant, with the labels of the chapter 3 figure of
-the sledge: the runner, the contact point (x, y), the heading theta measured
-from Ox, the torsional spring (force function U = -k^2 theta^2 / 2, pulling
-theta back to 0), the constraint direction (the velocity of the contact point
-lies along the runner, ydot = xdot tan theta, (3.2)) and the reaction of the
-plane (across the runner).
+On it, the sledge at one instant, with the labels and colours of the chapter 3
+figure of the sledge (sledge.py): the runner, the contact point P = (x, y), the
+heading theta measured from the x direction, the torsional spring k^2 (force
+function U = -k^2 theta^2 / 2, pulling theta back to 0), the velocity v along
+the runner (the constraint direction, ydot = xdot tan theta, (3.2)) and the
+reaction R of the plane, across the runner.
 
 Run ``python book/figures/systems/sledge_path.py``: it writes
 ``sledge_path.svg`` beside this file (deterministic output).
@@ -48,6 +48,10 @@ def arrow(ax, P, Q, color, lw=3.0):
                                 mutation_scale=26, shrinkA=0, shrinkB=0))
 
 
+# the colours of the chapter 3 figure (sledge.py)
+RUNNER, SPRING, VELOCITY, REACTION = "#2c3e50", "#b9770e", "#c0392b", "#1f6f3f"
+
+
 def draw():
     x, y, th = path()
     fig, ax = plt.subplots(figsize=(10.0, 6.4))
@@ -58,46 +62,39 @@ def draw():
     i = np.searchsorted(np.linspace(0.0, 2.45 * np.pi, len(x)), 2.0 * np.pi)
     P, h = np.array([x[i], y[i]]), th[i]
     u, nrm = np.array([np.cos(h), np.sin(h)]), np.array([-np.sin(h), np.cos(h)])
-    half, width = 1.0, 0.12
-    body = np.array([P + s1 * half * u + s2 * width * nrm
-                     for s1, s2 in [(-1, -1), (1, -1), (1, 1), (-1, 1), (-1, -1)]])
-    ax.fill(body[:, 0], body[:, 1], color="C0", alpha=0.30, zorder=3)
-    ax.plot(body[:, 0], body[:, 1], color="C0", lw=2.5, zorder=3)
-    tail = P - 0.75 * half * u
-    ax.annotate("runner", xy=tail - 0.1 * nrm, xytext=tail + np.array([0.1, -1.75]),
-                color="C0", ha="center",
-                arrowprops=dict(arrowstyle="-", color="C0", lw=1.5))
+    half = 1.0
+    ax.plot(*zip(P - half * u, P + half * u), color=RUNNER, lw=9,
+            solid_capstyle="round", zorder=3)
+    ax.text(*(P - 0.75 * half * u - 0.5 * nrm), "runner", color=RUNNER, fontsize=19,
+            rotation=np.degrees(h), ha="center", va="center")
 
-    # Ox direction and the heading theta
-    ax.plot([P[0], P[0] + 2.1], [P[1], P[1]], color="k", lw=1.2, ls="--", zorder=2)
+    # the x direction and the heading theta
+    ax.plot([P[0], P[0] + 2.1], [P[1], P[1]], color="0.45", lw=1.4, ls="--", zorder=2)
     arc = np.linspace(0.0, h, 40)
     ax.plot(P[0] + 1.6 * np.cos(arc), P[1] + 1.6 * np.sin(arc), color="k", lw=1.5)
     ax.text(P[0] + 1.78, P[1] + 0.45, r"$\theta$", fontsize=26)
 
-    # the torsional spring at the contact point: a small spiral
+    # the torsional spring at the contact point: a spiral, labelled k^2 as in chapter 3
     s = np.linspace(0.0, 3.2 * np.pi, 300)
-    r = 0.05 + 0.03 * s
-    ax.plot(P[0] + r * np.cos(s + h), P[1] + r * np.sin(s + h), color="C2", lw=2.0,
+    r = 0.06 + 0.035 * s
+    ax.plot(P[0] + r * np.cos(s + h), P[1] + r * np.sin(s + h), color=SPRING, lw=2.0,
             zorder=4)
-    ax.annotate(r"spring $k$", xy=P + np.array([-0.22, -0.2]),
-                xytext=P + np.array([-2.7, -1.75]), color="C2", ha="center",
-                arrowprops=dict(arrowstyle="-", color="C2", lw=1.5))
+    ax.text(P[0] - 0.5, P[1] + 0.05, r"$k^2$", color=SPRING, ha="right", va="center")
 
-    # the contact point
-    ax.plot(*P, "o", color="k", ms=9, zorder=5)
-    ax.annotate(r"contact point $(x, y)$", xy=P + np.array([0.08, -0.08]),
-                xytext=P + np.array([0.5, -1.3]), ha="left",
-                arrowprops=dict(arrowstyle="-", color="k", lw=1.2))
+    # the contact point P = (x, y)
+    ax.plot(*P, "o", ms=11, mfc="white", mec="k", mew=2, zorder=6)
+    ax.text(*(P + 0.3 * u - 0.6 * nrm), r"$P$", ha="left", va="center", zorder=6)
 
-    # constraint direction (the velocity lies along the runner) and the reaction
-    arrow(ax, P + half * u, P + (half + 1.1) * u, "C3")
-    ax.text(*(P + (half + 1.2) * u + np.array([0.1, 0.0])),
-            "constraint\ndirection", color="C3", va="center", ha="left")
-    arrow(ax, P, P + 1.5 * nrm, "C1")
-    ax.text(*(P + 1.6 * nrm), "reaction", color="C1", ha="center", va="bottom")
+    # v along the runner (the constraint direction) and the reaction R across it
+    arrow(ax, P + half * u, P + (half + 1.1) * u, VELOCITY)
+    ax.text(*(P + (half + 1.25) * u), r"$\mathbf{v}$", color=VELOCITY, fontsize=26,
+            ha="left", va="bottom")
+    arrow(ax, P, P + 1.5 * nrm, REACTION)
+    ax.text(*(P + 1.6 * nrm), r"$\mathbf{R}$", color=REACTION, fontsize=26,
+            ha="center", va="bottom")
 
     # the axes
-    x0, y0 = -0.4, y.min() - 1.9
+    x0, y0 = -0.4, y.min() - 1.6
     arrow(ax, (x0, y0), (x[-1] + 0.3, y0), "k", lw=1.5)
     arrow(ax, (x0, y0), (x0, y.max() + 1.2), "k", lw=1.5)
     ax.text(x[-1] + 0.4, y0, r"$x$", va="center")
