@@ -361,6 +361,7 @@ def _turning_point():
     import whittaker_teach as wt
     names = Names(_syms("x theta thetaprime t h C+ a+ m+ J+ k+"))
     th, C, a, J, k = (names[n] for n in "theta C a J k".split())
+    names.definitions["omega"] = k / sp.sqrt(J)          # the statement's omega = k/sqrt(J)
     p = {n: TURNING[n] for n in "mJk"}
     ex = wt.examples.sledge_exact(p, a=TURNING["a"], phi=-math.pi / 2, C=TURNING["C"])
     red = _sledge_reduction()

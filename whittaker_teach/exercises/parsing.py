@@ -51,10 +51,11 @@ from sympy.core.relational import Relational
 from sympy.logic.boolalg import Boolean
 from sympy.parsing.sympy_parser import auto_number, auto_symbol, convert_xor, stringify_expr
 
+from .notation import to_ascii
 from .limits import (MAX_DEPTH, MAX_DERIVATIVE_ORDER, MAX_DIGITS, MAX_EXPONENT,
                      MAX_FLOAT_DIGITS, MAX_LENGTH, MAX_MAGNITUDE, MAX_NODES, TooExpensive)
 
-__all__ = ["AnswerError", "read_answer", "plain_symbols", "describe", "article",
+__all__ = ["AnswerError", "Context", "read_answer", "plain_symbols", "describe", "article",
            "ALLOWED_FUNCTIONS"]
 
 ALLOWED_FUNCTIONS = {
@@ -65,8 +66,27 @@ ALLOWED_FUNCTIONS = {
     "sinh": sp.sinh, "cosh": sp.cosh, "tanh": sp.tanh,
     "Abs": sp.Abs, "abs": sp.Abs, "sign": sp.sign,
     "Rational": sp.Rational, "Derivative": sp.Derivative, "diff": sp.diff,
+    "Integral": sp.Integral, "Sum": sp.Sum,
 }
 CONSTANTS = {"pi": sp.pi, "E": sp.E, "I": sp.I}
+MAX_INTEGRALS = 3            # Integral/Sum nodes in one answer (each evaluated by quadrature)
+MAX_SUM_TERMS = 10000        # terms of a finite Sum
+
+
+class Context:
+    """What an exercise declares: its symbols (name -> Symbol, with assumptions and
+    aliases), the names that are functions (coordinates, as in ``theta(x)``), and
+    symbols defined by the statement (name -> expression, e.g. omega = k/sqrt(J))."""
+
+    def __init__(self, symbols=None, functions=(), definitions=None):
+        self.symbols = dict(symbols or {})
+        self.functions = set(functions)
+        self.definitions = dict(definitions or {})
+
+    def symbol(self, name):
+        if name in self.definitions:
+            return self.definitions[name]
+        return self.symbols.get(name) or sp.Symbol(name)
 
 # the names the tokenizer's own code refers to, each checked by _Builder
 _GLOBALS = {"Symbol": sp.Symbol, "Function": sp.Function, "Integer": sp.Integer,
@@ -129,8 +149,11 @@ def _balance(text):
         raise AnswerError(f"the parenthesis opened at position {stack[-1]} is never closed")
 
 
-def _calls(text):
-    """Refuse calls of anything but the maths functions and coordinates such as theta(x)."""
+def _calls(text, context=None):
+    """Refuse calls of anything but the maths functions and coordinates such as theta(x).
+
+    (With a context, other names followed by '(' were made products by the notation.)
+    """
     for m in re.finditer(r"([^\W\d]\w*)\s*\(", text):
         name = m.group(1)
         if name in ALLOWED_FUNCTIONS:
@@ -146,7 +169,7 @@ def _calls(text):
                               "coordinate may be written theta(x)")
 
 
-def _check_string(text, max_length):
+def _check_string(text, max_length, context=None):
     if len(text) > max_length:
         raise AnswerError(f"the answer is {len(text)} characters long; a formula of at most "
                           f"{max_length} characters is expected")
@@ -172,7 +195,7 @@ def _check_string(text, max_length):
         raise AnswerError(f"the answer contains {shown}, which cannot appear in a formula here "
                           "(use + - * / ^ ** ( ) and names)")
     _balance(text)
-    _calls(text)
+    _calls(text, context)
 
 
 def _primes(text):
@@ -209,11 +232,17 @@ def _syntax(text):
     return "write products with *, powers with ** or ^, e.g. '2*m*g*y'"
 
 
-def parse_string(text, max_length=MAX_LENGTH):
-    """Parse a formula string safely, without evaluating it; AnswerError says what is wrong."""
-    _check_string(text, max_length)
-    for g, name in _GREEK.items():
-        text = text.replace(g, name)
+def parse_string(text, max_length=MAX_LENGTH, context=None):
+    """Parse a formula string safely, without evaluating it; AnswerError says what is wrong.
+
+    ``context`` (:class:`Context`): the exercise's symbols, functions and definitions;
+    without it every ``name(symbol)`` is read as a coordinate.
+    """
+    if len(text) > max_length:
+        raise AnswerError(f"the answer is {len(text)} characters long; a formula of at most "
+                          f"{max_length} characters is expected")
+    text = to_ascii(text, None if context is None else context.functions)
+    _check_string(text, 4 * max_length, context)
     text = _primes(text)
     try:
         code = stringify_expr(text, dict(_LOCALS), dict(_GLOBALS), _TRANSFORMATIONS)
@@ -223,7 +252,12 @@ def parse_string(text, max_length=MAX_LENGTH):
         shown = text if len(text) <= 30 else text[:27] + "..."
         raise AnswerError(f"could not read {shown!r} as a formula: {_syntax(text)}") \
             from None
-    return _Builder().build(tree.body)
+    try:
+        return _Builder(context).build(tree.body)
+    except (OverflowError, ValueError) as exc:
+        if isinstance(exc, AnswerError):
+            raise
+        raise _too_large("a number") from None
 
 
 def _too_large(what):
@@ -234,8 +268,10 @@ def _too_large(what):
 class _Builder:
     """Build a SymPy expression from the parsed tree, refusing what is too costly."""
 
-    def __init__(self):
+    def __init__(self, context=None):
         self.nodes = 0
+        self.integrals = 0
+        self.context = context
 
     def build(self, node, depth=0):
         self.nodes += 1
@@ -283,7 +319,7 @@ class _Builder:
                                             for op, t in terms]))
         if isinstance(node.op, (ast.Mult, ast.Div)):
             factors = self._chain(node, depth, (ast.Mult, ast.Div))
-            if any(isinstance(op, ast.Div) and f == 0 for op, f in factors):
+            if any(isinstance(op, ast.Div) and f.is_zero for op, f in factors):
                 raise AnswerError("the answer divides by zero")
             return _bounded_number(sp.Mul(*[1 / f if isinstance(op, ast.Div) else f
                                             for op, f in factors]))
@@ -297,7 +333,7 @@ class _Builder:
         if isinstance(op, ast.Mult):
             out = a * b
         elif isinstance(op, ast.Div):
-            if b == 0:
+            if b.is_zero:
                 raise AnswerError("the answer divides by zero")
             out = a / b
         elif isinstance(op, ast.Pow):
@@ -318,6 +354,8 @@ class _Builder:
                                   "with *, as in 2*(x + 1)")
             if not (len(args) == 1 and args[0].is_Symbol):
                 raise AnswerError("a coordinate function takes one symbol, as in theta(x)")
+            if self.context is not None and f.__name__ not in self.context.functions:
+                return self.context.symbol(f.__name__) * args[0]
             return f(args[0])
         if not isinstance(func, ast.Name):
             raise AnswerError("only the maths functions may be called")
@@ -332,6 +370,8 @@ class _Builder:
                     if isinstance(a, ast.Tuple) and len(a.elts) == 2 else self.build(a, depth + 1)
                     for a in node.args]
             return _derivative(name, args)
+        if name in ("Integral", "Sum"):
+            return self._integral(name, node, depth)
         args = [self.build(a, depth + 1) for a in node.args]
         if name == "Rational":
             if len(args) != 2 or not all(a.is_Integer for a in args) or args[1] == 0:
@@ -343,12 +383,31 @@ class _Builder:
             wanted = "two arguments" if name == "atan2" else "one argument"
             raise AnswerError(f"{name} takes {wanted}, not {len(args)}") from None
 
-    @staticmethod
-    def _atom(name, node):
+    def _integral(self, name, node, depth):
+        """Integral(f, (s, a, b)) / Sum(f, (n, a, b)), left unevaluated (numbers only)."""
+        self.integrals += 1
+        if self.integrals > MAX_INTEGRALS:
+            raise AnswerError(f"the answer contains more than {MAX_INTEGRALS} integrals or sums")
+        if len(node.args) != 2 or not (isinstance(node.args[1], ast.Tuple)
+                                       and len(node.args[1].elts) == 3):
+            raise AnswerError(f"{name}(f, (s, a, b)) takes an expression and a tuple "
+                              "(variable, lower limit, upper limit)")
+        f = self.build(node.args[0], depth + 1)
+        s, a, b = (self.build(e, depth + 2) for e in node.args[1].elts)
+        if not s.is_Symbol:
+            raise AnswerError(f"{name}(f, (s, a, b)): s must be a name")
+        if f.has(sp.Integral, sp.Sum):
+            raise AnswerError(f"the answer contains an {name} inside an integral or a sum; "
+                              "evaluate the inner one first")
+        return (sp.Integral if name == "Integral" else sp.Sum)(f, (s, a, b))
+
+    def _atom(self, name, node):
         (arg,) = node.args if len(node.args) == 1 else (None,)
         value = arg.value if isinstance(arg, ast.Constant) else None
         if name in ("Symbol", "Function") and isinstance(value, str):
-            return sp.Symbol(value) if name == "Symbol" else sp.Function(value)
+            if name == "Symbol":
+                return self.context.symbol(value) if self.context else sp.Symbol(value)
+            return sp.Function(value)
         if name == "Integer" and isinstance(value, int):
             return integer(value)
         if name == "Float" and isinstance(value, str):
@@ -388,7 +447,9 @@ def power(a, b):
         raise _too_large(f"a power {_short(a)}**{_short(b)}") if a.is_Number else \
             AnswerError(f"the answer contains a power with the exponent {_short(b)}; "
                         f"exponents up to {MAX_EXPONENT} are accepted")
-    if a.is_Number and b.is_Number and a != 0:
+    if a.is_Number and a.is_zero and b.is_Number and b.is_negative:
+        raise AnswerError("the answer divides by zero (0 to a negative power)")
+    if a.is_Number and b.is_Number and not a.is_zero:
         size = float(b) * math.log10(abs(float(a))) if abs(a) < 10**300 else math.inf
         if size > 300:
             raise _too_large(f"a power {_short(a)}**{_short(b)}")
@@ -524,14 +585,14 @@ def _bounded_tree(expr):
         stack.extend((a, depth + 1) for a in e.args)
 
 
-def read_answer(answer, max_length=MAX_LENGTH):
+def read_answer(answer, max_length=MAX_LENGTH, context=None):
     """An answer (expression, number or string) as a SymPy expression in plain symbols.
 
     Raises :class:`AnswerError` with a message saying what was expected, or
     :class:`~whittaker_teach.exercises.limits.TooExpensive`.
     """
     if isinstance(answer, str):
-        expr = parse_string(answer, max_length)
+        expr = parse_string(answer, max_length, context)
     elif isinstance(answer, sp.Basic):
         _bounded_tree(answer)
         expr = answer

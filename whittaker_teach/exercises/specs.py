@@ -22,7 +22,7 @@ import sympy as sp
 from .compare import _Fn, compare, depends_on, equal
 from .feedback import Feedback
 from .limits import MAX_LENGTH, TOO_EXPENSIVE, TooExpensive, time_budget
-from .parsing import _GREEK, AnswerError, article, plain_symbols, read_answer
+from .parsing import _GREEK, AnswerError, Context, article, plain_symbols, read_answer
 
 __all__ = ["Exercise", "Part", "Names", "check_part"]
 
@@ -35,8 +35,13 @@ class Names:
     Greek letters may be written as such (``θ``).
     """
 
-    def __init__(self, symbols):
+    def __init__(self, symbols, functions=None, definitions=None):
         self.symbols = {s.name: s for s in symbols}
+        # the coordinates: a name with a derivative among the symbols (theta: thetaprime)
+        self.functions = set(functions) if functions is not None else {
+            n for n in self.symbols if any(n + d in self.symbols
+                                           for d in ("prime", "dot"))}
+        self.definitions = dict(definitions or {})
         self.alias = {}
         for name, s in self.symbols.items():
             self.alias[name] = s
@@ -48,6 +53,9 @@ class Names:
                     for a in alts:
                         self.alias.setdefault(base + a, s)
                     break
+        for name, s in self.symbols.items():
+            if "_" in name.strip("_"):             # g_0 is also g0 (and g₀, by the notation)
+                self.alias.setdefault(name.replace("_", ""), s)
         for g, latin in _GREEK.items():
             for name, s in list(self.alias.items()):
                 if name.startswith(latin):
@@ -56,10 +64,17 @@ class Names:
     def __getitem__(self, name):
         return self.symbols[name]
 
+    def context(self):
+        """The :class:`~whittaker_teach.exercises.parsing.Context` for reading strings."""
+        return Context(self.alias, self.functions, self.definitions)
+
     def resolve(self, expr):
         """Map every free symbol of expr (by name) to the exercise's symbol."""
         sub = {}
         for s in sorted(expr.free_symbols, key=str):
+            if s.name in self.definitions:
+                sub[s] = self.definitions[s.name]
+                continue
             canon = self.alias.get(s.name)
             if canon is None:
                 raise AnswerError(f"your answer uses the symbol {s.name[:30]}, which is not a "
@@ -137,13 +152,25 @@ def _norm_choice(text):
     return "".join(c for c in text.lower() if c.isalnum())
 
 
+MAX_CHOICE_LENGTH = 200
+
+
 def _check_choice(ex, part, answer):
+    if isinstance(answer, type) and issubclass(answer, BaseException):
+        answer = answer.__name__                     # wt.ChartError, the class itself
+    if isinstance(answer, BaseException):
+        answer = type(answer).__name__
+    if isinstance(answer, str) and len(answer) > MAX_CHOICE_LENGTH:
+        return Feedback(False, f"The answer is {len(answer)} characters long; "
+                        f"{part.listing()} (a short string)", ex.id, part.name, "invalid")
     if not isinstance(answer, str):
         return Feedback(False, f"The answer is {article(type(answer).__name__)}; "
                         f"{part.listing()} (a string)", ex.id, part.name, "invalid")
     key = _norm_choice(answer)
+    # "wt.ChartError", "whittaker_teach.ChartError": the name after the module
+    last = _norm_choice(answer.strip().rsplit(".", 1)[-1]) if "." in answer.strip() else key
     for name, (aliases, message) in part.choices.items():
-        if key in {_norm_choice(a) for a in (name, *aliases)}:
+        if {key, last} & {_norm_choice(a) for a in (name, *aliases)}:
             if name == part.answer_key:
                 return Feedback(True, message or part.success, ex.id, part.name)
             return Feedback(False, message, ex.id, part.name)
@@ -173,7 +200,13 @@ def check_part(ex, part, answer, max_length=None):
 
 def _check_expression(ex, part, answer, names, domain, max_length=None):
     try:
-        expr = names.resolve(read_answer(answer, max_length or MAX_LENGTH))
+        expr = names.resolve(read_answer(answer, max_length or MAX_LENGTH, names.context()))
+        if expr.has(sp.Integral, sp.Sum):
+            if part.expected.free_symbols:
+                raise AnswerError("your answer contains an unevaluated integral or sum: "
+                                  "evaluate it (this part's answer is a formula)")
+            from .quadrature import numeric_value
+            expr = numeric_value(expr)
     except AnswerError as exc:
         return Feedback(False, _sentence(f"{exc}; {part.listing()}"), ex.id, part.name,
                         "invalid")
