@@ -83,6 +83,12 @@ def solved_velocities(constraints, velocities, t):
     if not J.has(*velocities):                       # linear in the dependent velocities
         zero = {v: 0 for v in velocities}
         rest = sp.Matrix([f.xreplace(zero) for f in constraints])
+        g = len(velocities)
+        if all(J[i, j] == 0 for i in range(g) for j in range(g) if i != j):   # one each
+            if any(J[i, i] == 0 for i in range(g)):
+                raise ModelError(f"the constraints cannot be solved for {names}: a "
+                                 "constraint does not contain its velocity (1.1)")
+            return {v: -rest[i] / J[i, i] for i, v in enumerate(velocities)}
         if J.det() == 0:
             raise ModelError(f"the constraints cannot be solved for {names}: their matrix of "
                              "coefficients of these velocities is singular (1.1)")
