@@ -50,7 +50,7 @@ def main():
     rp = orbit(0.0)
     ax.plot([-orbit(np.pi) - 0.3, rp + 0.9], [0, 0], "--", color="0.45", lw=1.3, zorder=1)
     ax.plot(rp, 0, "o", color="#2c3e50", ms=6)
-    ax.text(rp - 0.05, -0.2, "pericentre", fontsize=16, ha="center", va="top", color="#2c3e50")
+    ax.text(rp + 0.1, -0.12, "pericentre", fontsize=16, ha="left", va="top", color="#2c3e50")
 
     # the focus F, the centre of attraction
     ax.plot(0, 0, "*", color="#b9770e", ms=22, zorder=6)
