@@ -104,9 +104,16 @@ def main(argv=None):
     b.add_argument("--quiet", action="store_true", help="numerics: no progress bar")
     b.set_defaults(func=_bench)
     g = sub.add_parser("grade", help="grade the students' exercise notebooks into a CSV")
-    g.add_argument("submissions", nargs="+", help="the submitted .ipynb files")
+    g.add_argument("submissions", nargs="*", help="the submitted .ipynb files (after "
+                   "'--', or as existing files, names may begin with '-')")
     g.add_argument("--out", required=True, help="the CSV to write: "
-                   "submission,exercise,part,ok,message")
+                   "submission,exercise,part,ok,points,max_points,message")
+    g.add_argument("--gradebook", metavar="FILE", help="points per part and total, per "
+                   "submission (CSV)")
+    g.add_argument("--canvas", metavar="FILE", help="Canvas's gradebook import (CSV)")
+    g.add_argument("--moodle", metavar="FILE", help="Moodle's offline grading worksheet (CSV)")
+    g.add_argument("--unsafe", action="store_true", help="run the notebooks without the "
+                   "sandbox where it cannot be had (not root, no bubblewrap)")
     g.add_argument("--feedback", metavar="DIR", help="write one HTML page per submission")
     g.add_argument("--jobs", type=int, default=2, help="notebooks run at a time (default 2)")
     g.add_argument("--cell-timeout", type=float, default=60, help="seconds per cell (60)")
@@ -114,7 +121,17 @@ def main(argv=None):
     g.add_argument("--memory", type=int, default=3000, help="MB of memory per kernel (3000)")
     g.add_argument("--quiet", action="store_true", help="no progress bar")
     g.set_defaults(func=_grade)
-    args = parser.parse_args(argv)
+    args, extra = parser.parse_known_args(argv)
+    if args.command == "grade":   # file names that begin with '-' (grade *.ipynb)
+        import os
+        unknown = [e for e in extra if not os.path.isfile(e)]
+        if unknown:
+            parser.error("unrecognized arguments: " + " ".join(unknown))
+        args.submissions = list(args.submissions) + extra
+        if not args.submissions:
+            parser.error("grade: no submissions given")
+    elif extra:
+        parser.error("unrecognized arguments: " + " ".join(extra))
     return args.func(args)
 
 

@@ -94,18 +94,17 @@ def _class(folder, outside, full=True):
                          f"import os, shutil\nos.remove({str(outside / 'keep.txt')!r})",
                          f"open({str(outside / 'new.txt')!r}, 'w').write('x')",
                          "shutil.rmtree(os.path.expanduser('~'), ignore_errors=True)"],
-        dict.fromkeys(PARTS, True), "error in code cell" if grading.confinement_available()
-        else None)
+        dict.fromkeys(PARTS, True), "error in code cell")
     add("noisy.ipynb", [start, "print('x' * 30_000_000)", *checks],
         dict.fromkeys(PARTS, True))
     add("network.ipynb", [start, *checks, "import socket\n"
                           "socket.create_connection(('93.184.216.34', 80), timeout=3)"],
         dict.fromkeys(PARTS, True), "error in code cell")
-    forged = json.dumps({"exercise": EX, "part": "h", "status": "correct", "ok": True,
-                         "answer": "m*mu", "why": ""})
+    forged = json.dumps({"exercise": EX, "part": "h", "kind": "answer", "status": "correct",
+                         "ok": True, "answer": "m*mu", "why": ""})
     add("forged.ipynb", [start, *_checks(none),
-                         f"import os\nopen(os.environ['WHITTAKER_TEACH_CHECK_LOG'], 'a')"
-                         f".write({forged!r} + '\\n')"],
+                         f"import os\nos.write(int(os.environ['WHITTAKER_TEACH_CHECK_FD']), "
+                         f"{forged!r}.encode() + b'\\n')"],
         {"L_star": False, "r_pp": False, "h": False})
     (folder / "essay.ipynb").write_text("My answers are on paper.\n", encoding="utf-8")
     expected["essay.ipynb"] = (None, "not a notebook")
@@ -140,9 +139,10 @@ def test_a_class_is_graded_into_the_expected_csv(tmp_path, package_path, full):
                                cell_timeout=10, timeout=100, quiet=True)
     with open(out, newline="", encoding="utf-8") as f:
         table = list(csv.reader(f))
-    assert table[0] == ["submission", "exercise", "part", "ok", "message"]
+    assert table[0] == ["submission", "exercise", "part", "ok", "points", "max_points",
+                        "message"]
     got = {}
-    for sub, ex, part, ok, message in table[1:]:
+    for sub, ex, part, ok, _, _, message in table[1:]:
         got.setdefault(sub, []).append((ex, part, ok, message))
     assert sorted(got) == sorted(expected)
     for sub, (oks, failure) in expected.items():
@@ -161,9 +161,8 @@ def test_a_class_is_graded_into_the_expected_csv(tmp_path, package_path, full):
         else:
             assert len(fails) == 1 and failure in fails[0], (sub, fails)
     # the lecturer's files are intact (the kernel could only write its scratch folder)
-    if grading.confinement_available():
-        assert (outside / "keep.txt").read_text(encoding="utf-8") == "keep me"
-        assert not (outside / "new.txt").exists()
+    assert (outside / "keep.txt").read_text(encoding="utf-8") == "keep me"
+    assert not (outside / "new.txt").exists()
     right = sum(1 for r in rows if r.part and r.ok)
     wrong = sum(1 for r in rows if r.part and not r.ok)
     assert line == f"{len(expected)} submissions: {right} parts right, {wrong} parts wrong, " \
@@ -185,8 +184,8 @@ def test_the_command_line(tmp_path, package_path):
     assert proc.returncode == 0, proc.stderr
     assert "2 submissions: 0 parts right, 0 parts wrong, 2 failures" in proc.stdout
     rows = list(csv.reader(open(out, encoding="utf-8")))
-    assert rows[1][:4] == ["a.ipynb", "", "", "False"] and "truncated" in rows[1][4]
-    assert rows[2][:4] == ["b.txt", "", "", "False"] and "not a notebook" in rows[2][4]
+    assert rows[1][:4] == ["a.ipynb", "", "", "False"] and "truncated" in rows[1][6]
+    assert rows[2][:4] == ["b.txt", "", "", "False"] and "not a notebook" in rows[2][6]
 
 
 def test_recorded_answers_are_graded_as_they_were_checked():
@@ -205,3 +204,40 @@ def test_recorded_answers_are_graded_as_they_were_checked():
                                                  answer))
             ok, message = grading._recheck(ex, part, rec)
             assert ok == want, (ex, part, spec, message)
+
+
+def test_file_names_beginning_with_a_dash(tmp_path, package_path):
+    """`grade *.ipynb` where a file is called -x.ipynb, and `grade --out F -- *.ipynb`."""
+    _notebook(tmp_path / "-x.ipynb", ["from whittaker_teach.exercises import check",
+                                     *_checks(RIGHT)])
+    (tmp_path / "b.txt").write_text("hello", encoding="utf-8")
+    for argv in (["-x.ipynb", "b.txt", "--out", "g.csv"], ["--out", "g.csv", "--", "-x.ipynb",
+                                                           "b.txt"]):
+        proc = subprocess.run([sys.executable, "-m", "whittaker_teach", "grade", *argv],
+                              capture_output=True, text=True, timeout=120, cwd=tmp_path,
+                              env={**os.environ, "PYTHONPATH": package_path})
+        assert proc.returncode == 0, proc.stderr
+        assert "2 submissions: 3 parts right, 0 parts wrong, 1 failure" in proc.stdout
+        rows = list(csv.reader(open(tmp_path / "g.csv", encoding="utf-8")))
+        assert rows[1][0] == "'-x.ipynb" or rows[2][0] == "'-x.ipynb"
+    proc = subprocess.run([sys.executable, "-m", "whittaker_teach", "grade", "--out", "g.csv",
+                           "--nonsense"], capture_output=True, text=True, timeout=60,
+                          cwd=tmp_path, env={**os.environ, "PYTHONPATH": package_path})
+    assert proc.returncode == 2 and "unrecognized arguments: --nonsense" in proc.stderr
+
+
+def test_without_the_sandbox_grade_refuses_unless_unsafe(tmp_path, monkeypatch, capsys):
+    import argparse
+
+    from whittaker_teach.exercises import sandbox
+    monkeypatch.setattr(sandbox, "_AVAILABLE", ["bubblewrap is not installed"])
+    with pytest.raises(grading.SandboxUnavailable, match="bubblewrap is not installed"):
+        grading.grade([], str(tmp_path / "g.csv"))
+    args = argparse.Namespace(submissions=[], out=str(tmp_path / "g.csv"), feedback=None,
+                              jobs=1, cell_timeout=5, timeout=5, memory=500, quiet=True,
+                              unsafe=False, gradebook=None, canvas=None, moodle=None)
+    assert grading.main(args) == 2
+    assert "refusing" in capsys.readouterr().err and not (tmp_path / "g.csv").exists()
+    args.unsafe = True
+    assert grading.main(args) == 0
+    assert "UNSAFE" in capsys.readouterr().out

@@ -1,38 +1,42 @@
-"""Grading a class: run each submitted notebook in a fresh, confined kernel and collect its checks.
+"""Grading a class: each submitted notebook run in a sandbox of its own, its answers checked outside.
 
-``python -m whittaker_teach grade SUBMISSION.ipynb ... --out grades.csv [--feedback DIR]``
+``python -m whittaker_teach grade SUBMISSION.ipynb ... --out grades.csv [--feedback DIR]
+[--gradebook FILE] [--canvas FILE] [--moodle FILE]``
 
 For each submission:
 
-1. the file is read as a notebook (not a file at all, not JSON, truncated
-   JSON, not a notebook: one row saying so);
-2. it is copied into a fresh scratch folder, which is also the kernel's
-   working directory and ``HOME``;
-3. its cells run in order in a fresh kernel (nbclient), two submissions at a
-   time, with a time limit per cell and per notebook.  The kernel is
-   confined: a memory limit (``RLIMIT_AS``), a limit on the size of files it
-   writes and on its output; as root on Linux it also runs in its own network
-   namespace (no network at all) and its own mount namespace, where every
-   file system but its scratch folder is read-only, and without capabilities
-   (``unshare -mn``, ``setpriv``).  Without root, a ``sitecustomize`` refuses
-   connections to anything but the local machine, and the scratch folder is
-   only the working directory: run ``grade`` as root in a container to grade
-   untrusted notebooks;
-4. every ``check(...)`` the notebook makes is recorded (the environment
-   variable ``WHITTAKER_TEACH_CHECK_LOG`` makes :func:`check` append a JSON
-   line with the answer it was given), and the grader checks each recorded
-   answer again itself, in its own process, so that a notebook cannot write
-   its own grades.  The last check of each part counts; a part never checked
-   is "not answered".
+1. the file is read once, by the grader (not a regular file, a symbolic
+   link, too large, not UTF-8, not JSON, JSON nested deeper than
+   ``MAX_JSON_DEPTH``, truncated, not a notebook: one row saying so);
+2. those bytes run from top to bottom in a sandbox of their own
+   (:mod:`.sandbox`: bubblewrap, a uid of its own, its own process, network,
+   IPC and mount namespaces, one memory and process limit over all its
+   processes, a size-limited scratch tmpfs, the package without answers),
+   ``jobs`` at a time: nbclient and the kernel it starts both run inside,
+   with a time limit per cell and per notebook; when the run ends, every
+   process it started ends;
+3. inside, ``check(...)`` only records each answer as text
+   (:mod:`.recorder`); the grader then checks each recorded answer itself,
+   outside the sandbox, with :func:`whittaker_teach.exercises.check`.  The
+   last check of each part counts; a part never checked is "not answered".
 
-The CSV has one row per submission and part, ``submission,exercise,part,ok,
-message``, and one row with ``part`` empty when the notebook could not be run
-to the end (a timeout, an error in cell N, a kernel that died, not a
-notebook).  ``--feedback DIR`` writes one HTML page per submission.
+Every message in the CSV and on the feedback pages is the grader's own:
+nothing the notebook prints or writes is copied into them (a cell's error is
+named only by a built-in exception's name).  The CSV
+(``submission,exercise,part,ok,points,max_points,message``) is written as
+each submission is graded, so the rows already graded survive whatever
+happens later; a cell that begins with ``= + - @``, a tab or a carriage
+return gets a leading ``'`` (the OWASP rule against formula injection).
+
+Without the sandbox (not root, no bubblewrap, no namespaces) :func:`grade`
+refuses unless ``unsafe=True`` (``--unsafe``): then each notebook runs as a
+plain process of the grader's user, with only per-process limits.
 
 >>> row = Row("alice.ipynb", "kepler-orbit", "h", False, "not answered")
 >>> row.csv()
-['alice.ipynb', 'kepler-orbit', 'h', 'False', 'not answered']
+['alice.ipynb', 'kepler-orbit', 'h', 'False', '0', '1', 'not answered']
+>>> cell("=HYPERLINK(\\"http://x\\")"), cell("-dash.ipynb"), cell("ok")
+('\\'=HYPERLINK("http://x")', "'-dash.ipynb", 'ok')
 """
 
 from __future__ import annotations
@@ -41,25 +45,38 @@ import csv
 import html
 import json
 import os
+import queue
 import shutil
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["Row", "grade", "grade_one", "record_line", "main"]
+__all__ = ["Row", "grade", "grade_one", "record_line", "read_submission", "cell", "main",
+           "SandboxUnavailable", "HEADER"]
 
 CELL_TIMEOUT = 60          # seconds per cell
 NOTEBOOK_TIMEOUT = 300     # seconds per notebook
-MEMORY_MB = 3000           # address space of the kernel
+MEMORY_MB = 3000           # over all the processes of a submission
+PROCESSES = 128            # processes and threads of a submission
+DISK_MB = 200              # its scratch tmpfs
 MAX_NOTEBOOK_BYTES = 20_000_000
+MAX_JSON_DEPTH = 64
 MAX_OUTPUT_CHARS = 1_000_000
+MAX_LOG_BYTES = 2_000_000
+MAX_LOG_LINE = 200_000
 MAX_ANSWER_CHARS = 50_000
-LOG_NAME = ".whittaker-teach-checks.jsonl"
-KERNEL_NAME = "whittaker-teach-grade"
+HEADER = ["submission", "exercise", "part", "ok", "points", "max_points", "message"]
+# exercises whose student notebook uses the library, until the exercises say so themselves
+_SOLVERS_FALLBACK = {"chaplygin-sleigh", "turning-point", "work-precision"}
+
+
+class SandboxUnavailable(RuntimeError):
+    """The sandbox cannot be had here; the message says why."""
 
 
 @dataclass
@@ -71,98 +88,114 @@ class Row:
     part: str
     ok: bool
     message: str
+    points: float = 0
+    max_points: float = 1
 
     def csv(self):
-        return [self.submission, self.exercise, self.part, str(bool(self.ok)), self.message]
+        return [cell(v) for v in (self.submission, self.exercise, self.part, str(bool(self.ok)),
+                                  _num(self.points), _num(self.max_points) if self.part else "",
+                                  self.message)]
 
 
-# ---------------------------------------------------------------- recording
-def _answer_text(answer):
-    """The answer as text the safe parser reads back (None if it cannot be)."""
-    if isinstance(answer, str):
-        return answer[:MAX_ANSWER_CHARS]
-    kind = type(answer).__module__.split(".")[0]
-    if kind == "numpy" and getattr(answer, "ndim", None) == 0:
-        answer = answer.item()
-    if kind == "mpmath":
-        import mpmath
-        return mpmath.nstr(answer, 30) if isinstance(answer, mpmath.mpf) else None
-    if isinstance(answer, bool) or answer is None:
-        return None
-    if isinstance(answer, (int, float)):
-        text = repr(answer)
-        return text if len(text) < 100 else None
-    if "sympy" in sys.modules and kind == "sympy":
-        import sympy as sp
-        if isinstance(answer, sp.Basic):
-            if sum(1 for _ in zip(range(5001), sp.preorder_traversal(answer))) > 5000:
-                return None
-            text = sp.sstr(answer)
-            return text if len(text) <= MAX_ANSWER_CHARS else None
-    import numbers
-    from fractions import Fraction
-    if isinstance(answer, Fraction):
-        return f"Rational({answer.numerator}, {answer.denominator})"
-    if isinstance(answer, numbers.Number) and not isinstance(answer, complex):  # Decimal
-        text = str(answer)
-        return text if len(text) < 100 else None
-    return None
+def _num(x):
+    return f"{x:g}" if isinstance(x, float) else str(x)
 
 
+def cell(text):
+    """A CSV cell a spreadsheet never reads as a formula (OWASP: a leading quote)."""
+    text = str(text)
+    return "'" + text if text[:1] in ("=", "+", "-", "@", "\t", "\r") else text
+
+
+# ---------------------------------------------------------------- recording (unsafe mode)
 def record_line(feedback, answer):
-    """The JSON line that ``check`` appends to the check log while a notebook is graded.
-
-    The answer as text the grader can read again, or, for what cannot be
-    recorded so, the reason it cannot be read.
-    """
-    text, why = None, ""
-    if feedback.status != "unanswered":
-        try:
-            text = _answer_text(answer)
-            if text is None:
-                from .parsing import read_answer
-                read_answer(answer)
-                why = "the answer is too large to record for grading; simplify it"
-        except BaseException as exc:  # noqa: BLE001 - AnswerError, TooExpensive, anything
-            why = str(exc)[:300] or type(exc).__name__
-    return json.dumps({"exercise": feedback.exercise, "part": feedback.part,
-                       "status": feedback.status, "answer": text, "why": why})
+    """The check-log line for an answer given to ``check`` (see :mod:`.recorder`)."""
+    from .recorder import record_line as line
+    return line(feedback.exercise, feedback.part,
+                None if feedback.status == "unanswered" else answer)
 
 
 # ---------------------------------------------------------------- reading a submission
+def _json_depth(text, limit):
+    """True if the JSON text nests deeper than ``limit`` (brackets outside strings)."""
+    depth, in_str, esc = 0, False, False
+    for ch in text:
+        if in_str:
+            if esc:
+                esc = False
+            elif ch == "\\":
+                esc = True
+            elif ch == '"':
+                in_str = False
+        elif ch == '"':
+            in_str = True
+        elif ch in "[{":
+            depth += 1
+            if depth > limit:
+                return True
+        elif ch in "]}":
+            depth -= 1
+    return False
+
+
 def read_submission(path):
     """(notebook, None) or (None, why it is not a notebook)."""
-    import nbformat
-    path = Path(path)
-    if not path.is_file():
-        return None, "not a file"
-    size = path.stat().st_size
-    if size > MAX_NOTEBOOK_BYTES:
-        return None, f"the file is {size // 1_000_000} MB; a notebook of at most " \
-            f"{MAX_NOTEBOOK_BYTES // 1_000_000} MB is expected"
-    raw = path.read_bytes()
+    nb, _, why = _read(path)
+    return nb, why
+
+
+def _read(path):
+    """(notebook, its bytes, None) or (None, None, why it cannot be graded)."""
+    try:
+        return _read_checked(Path(path))
+    except (Exception, RecursionError) as exc:  # noqa: BLE001 - never stop the batch
+        return None, None, f"the grader could not read the file ({type(exc).__name__})"
+
+
+def _read_checked(path):
+    import stat
+    try:
+        st = os.lstat(path)
+    except OSError:
+        return None, None, "not found"
+    if stat.S_ISLNK(st.st_mode):
+        return None, None, "a symbolic link, not a notebook (hand in the .ipynb file itself)"
+    if not stat.S_ISREG(st.st_mode):
+        return None, None, "not a file"
+    if st.st_size > MAX_NOTEBOOK_BYTES:
+        return None, None, (f"the file is {st.st_size // 1_000_000} MB; a notebook of at most "
+                            f"{MAX_NOTEBOOK_BYTES // 1_000_000} MB is expected")
+    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0))
+    with os.fdopen(fd, "rb") as f:
+        if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):
+            return None, None, "not a file"
+        raw = f.read(MAX_NOTEBOOK_BYTES + 1)
+    if len(raw) > MAX_NOTEBOOK_BYTES:
+        return None, None, "the file is too large for a notebook"
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError:
-        return None, "not a notebook (a binary file, not JSON text)"
+        return None, None, "not a notebook (a binary file, not JSON text)"
     if not text.lstrip().startswith("{"):
-        return None, "not a notebook (not JSON: download the .ipynb file from Jupyter)"
+        return None, None, "not a notebook (not JSON: download the .ipynb file from Jupyter)"
+    if _json_depth(text, MAX_JSON_DEPTH):
+        return None, None, f"not a notebook (JSON nested more than {MAX_JSON_DEPTH} levels deep)"
     try:
         data = json.loads(text)
     except json.JSONDecodeError as exc:
         where = f"line {exc.lineno}, column {exc.colno}"
         if exc.pos >= len(text.rstrip()) - 1:
-            return None, f"not a notebook: the JSON is truncated (it ends at {where})"
-        return None, f"not a notebook: the JSON is damaged at {where} ({exc.msg})"
+            return None, None, f"not a notebook: the JSON is truncated (it ends at {where})"
+        return None, None, f"not a notebook: the JSON is damaged at {where}"
+    import nbformat
     try:
-        nb = nbformat.from_dict(data)
-        if nb.get("nbformat") != 4:
-            return None, "not a notebook in format 4 (save it from a current Jupyter)"
+        if not isinstance(data, dict) or data.get("nbformat") != 4:
+            return None, None, "not a notebook in format 4 (save it from a current Jupyter)"
         nb = nbformat.reads(text, as_version=4)
         nbformat.validate(nb)
     except Exception as exc:  # noqa: BLE001 - nbformat raises many kinds
-        return None, f"not a valid notebook ({type(exc).__name__}: {str(exc)[:120]})"
-    return nb, None
+        return None, None, f"not a valid notebook ({type(exc).__name__})"
+    return nb, raw, None
 
 
 def exercise_of(nb):
@@ -171,254 +204,233 @@ def exercise_of(nb):
     meta = nb.metadata.get("whittaker_teach", {})
     if isinstance(meta, dict) and isinstance(meta.get("exercise"), str):
         return meta["exercise"]
-    for cell in nb.cells:
-        if cell.cell_type == "code":
-            m = re.search(r"check\(\s*[\"']([\w-]+)[\"']", cell.source)
+    for c in nb.cells:
+        if c.cell_type == "code" and isinstance(c.source, str):
+            m = re.search(r"check\(\s*[\"']([\w-]+)[\"']", c.source[:100_000])
             if m:
                 return m.group(1)
     return None
 
 
-# ---------------------------------------------------------------- the kernel's confinement
-_SITE = '''\
-"""Installed by whittaker_teach's grader: no network but the local machine."""
-import socket as _socket
-
-_connect = _socket.socket.connect
-_connect_ex = _socket.socket.connect_ex
-
-
-def _local(address):
-    if isinstance(address, (str, bytes)):          # a unix socket
-        return True
-    host = str(address[0])
-    return host in ("localhost", "::1", "0.0.0.0") or host.startswith("127.")
-
-
-def connect(self, address):
-    if not _local(address):
-        raise OSError(101, "no network while a submission is graded")
-    return _connect(self, address)
+# ---------------------------------------------------------------- the worker (in the sandbox)
+def _private_stdout():
+    """Keep fd 1 for the result only; the kernel inherits /dev/null; no one may open ours."""
+    private = os.dup(1)                       # not inheritable
+    devnull = os.open(os.devnull, os.O_RDWR)
+    os.dup2(devnull, 1)
+    os.dup2(devnull, 2)
+    try:                                      # /proc/<worker>/fd becomes root's
+        import ctypes
+        ctypes.CDLL(None, use_errno=True).prctl(4, 0, 0, 0, 0)   # PR_SET_DUMPABLE = 0
+    except (OSError, AttributeError):
+        pass
+    return private
 
 
-def connect_ex(self, address):
-    if not _local(address):
-        return 101
-    return _connect_ex(self, address)
+def _worker_main(argv):
+    """``python -m whittaker_teach.exercises.grade worker NOTEBOOK SCRATCH CELL_TIMEOUT MEMORY_MB
+    PROCESSES DISK_MB LOG_FD``: run the notebook, write one JSON object to stdout.
 
-
-_socket.socket.connect = connect
-_socket.socket.connect_ex = connect_ex
-'''
-
-# run in the kernel before the student's cells: cap what it prints
-_CAP_OUTPUT = f'''\
-import sys as _sys
-
-
-class _Capped:
-    def __init__(self, stream, left):
-        self._stream, self._left = stream, left
-
-    def write(self, text):
-        if self._left <= 0:
-            return len(text)
-        part = text[:self._left]
-        self._left -= len(part)
-        if self._left <= 0:
-            part += "\\n[the grader cut the output here]\\n"
-        return self._stream.write(part)
-
-    def __getattr__(self, name):
-        return getattr(self._stream, name)
-
-
-_sys.stdout = _Capped(_sys.stdout, {MAX_OUTPUT_CHARS})
-_sys.stderr = _Capped(_sys.stderr, {MAX_OUTPUT_CHARS})
-del _Capped
-'''
-
-
-_CONFINE = []
-
-
-def confinement_available():
-    """Can kernels run in their own network and mount namespaces (root, unshare, setpriv)?
-
-    Tried once: ``unshare -mn true`` must succeed (a container without the
-    capability to make namespaces cannot).
-    """
-    if not _CONFINE:
-        ok = (sys.platform.startswith("linux") and hasattr(os, "geteuid") and os.geteuid() == 0
-              and all(shutil.which(c) for c in ("unshare", "setpriv", "mount")))
-        if ok:
-            try:
-                ok = subprocess.run(["unshare", "-mn", "true"], capture_output=True,
-                                    timeout=20).returncode == 0
-            except (OSError, subprocess.SubprocessError):
-                ok = False
-        _CONFINE.append(ok)
-    return _CONFINE[0]
-
-
-def _kernel_main(argv):
-    """``python -m whittaker_teach.exercises.grade kernel ROOT MEMORY_MB CONFINE -f FILE``.
-
-    Runs inside ``unshare -mn`` when CONFINE is 1: make every mount but ROOT
-    read-only, drop all capabilities, then become the IPython kernel.
+    {"failure": None or {"kind", "cell"}, "errors": [{"cell", "ename"}]}; the
+    kernel's check log goes to the pipe LOG_FD (``/dev/fd/LOG_FD``).
     """
     import resource
-    root, memory, confine, rest = argv[0], int(argv[1]), argv[2] == "1", argv[3:]
-    if confine:
-        subprocess.run(["mount", "--make-rprivate", "/"], check=True)
-        subprocess.run(["mount", "--bind", root, root], check=True)
-        with open("/proc/self/mounts", encoding="utf-8") as f:
-            points = [line.split()[1] for line in f]
-        for mp in sorted(set(points), key=len, reverse=True):
-            if mp == root or mp.startswith(("/proc", "/sys")) or mp in ("/dev", "/dev/pts"):
-                continue
-            subprocess.run(["mount", "-o", "remount,bind,ro", mp], stderr=subprocess.DEVNULL,
-                           check=False)
+    private = _private_stdout()
+    nb_path, scratch, cell_timeout = argv[0], Path(argv[1]), float(argv[2])
+    memory, pids, disk, log_fd = int(argv[3]), int(argv[4]), int(argv[5]), int(argv[6])
+    os.environ["WHITTAKER_TEACH_CHECK_FD"] = str(log_fd)              # the sandbox's recorder
+    if not os.environ.get("WHITTAKER_TEACH_SANDBOX"):                 # the package's check
+        os.environ["WHITTAKER_TEACH_CHECK_LOG"] = f"/dev/fd/{log_fd}"
     limit = memory * 1024 * 1024
     resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
-    resource.setrlimit(resource.RLIMIT_FSIZE, (100_000_000, 100_000_000))
+    resource.setrlimit(resource.RLIMIT_FSIZE, (disk * 1024 * 1024,) * 2)
     resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
-    os.chdir(os.path.join(root, "work"))
-    cmd = [sys.executable, "-m", "ipykernel_launcher", *rest]
-    if confine:
-        cmd = ["setpriv", "--bounding-set=-all", "--inh-caps=-all", "--no-new-privs", *cmd]
-    os.execvp(cmd[0], cmd)
+    if os.environ.get("WHITTAKER_TEACH_SANDBOX"):   # a uid of its own: count its processes
+        resource.setrlimit(resource.RLIMIT_NPROC, (pids, pids))
+    for d in ("home", "tmp", ".grade", ".jupyter/runtime", ".ipython", ".matplotlib"):
+        (scratch / d).mkdir(parents=True, exist_ok=True)
+    home = scratch / "home"
+    result = {"failure": None, "errors": []}
+    try:
+        _execute(nb_path, home, cell_timeout, log_fd, result)
+    except BaseException as exc:  # noqa: BLE001 - report, never crash silently
+        result["failure"] = result["failure"] or {"kind": "start", "cell": 0,
+                                                  "ename": type(exc).__name__}
+    data = json.dumps(result).encode("utf-8")
+    view = memoryview(data)
+    while view:
+        view = view[os.write(private, view):]
+    return 0
 
 
-def _kernel_spec(ctl, root, memory, confine):
-    """A kernelspec folder (in ctl) whose kernel is confined as described above."""
-    argv = [sys.executable, "-m", "whittaker_teach.exercises.grade", "kernel", str(root),
-            str(memory), "1" if confine else "0", "-f", "{connection_file}"]
-    if confine:
-        argv = ["unshare", "-mn", *argv]
-    spec = Path(ctl) / "kernels" / KERNEL_NAME
-    spec.mkdir(parents=True)
-    (spec / "kernel.json").write_text(json.dumps({"argv": argv, "display_name": "grade",
-                                                  "language": "python"}), encoding="utf-8")
-    return Path(ctl)
-
-
-# ---------------------------------------------------------------- running one notebook
-def _worker_main(argv):
-    """``python -m whittaker_teach.exercises.grade run NOTEBOOK ROOT CELL_TIMEOUT MEMORY CONFINE
-    RESULT``.
-
-    Runs in a process of its own (the grader kills it at the notebook's time
-    limit); writes one JSON object to RESULT (outside ROOT, where the kernel
-    cannot write when confined): {"failure": "" or why the run stopped}.
-    """
-    import resource
-
+def _execute(nb_path, home, cell_timeout, log_fd, result):
     import nbformat
     from jupyter_client.manager import AsyncKernelManager
     from nbclient import NotebookClient
     from nbclient.exceptions import CellTimeoutError, DeadKernelError
-    nb_path, root, cell_timeout, memory, confine, result = argv[0], Path(argv[1]), \
-        float(argv[2]), int(argv[3]), argv[4] == "1", argv[5]
-    limit = 4 * 1024**3         # the worker holds the outputs: bound it too
-    resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+
+    class Client(NotebookClient):
+        """Keeps at most MAX_OUTPUT_CHARS of output (streams, displays, errors) in memory."""
+
+        kept = 0
+
+        def output(self, outs, msg, display_id, cell_index):
+            content = msg.get("content", {})
+            size = sum(len(str(v)) for v in content.values()) if isinstance(content, dict) \
+                else MAX_OUTPUT_CHARS
+            if msg.get("msg_type") != "error":
+                self.kept += size
+                if self.kept > MAX_OUTPUT_CHARS:
+                    return None
+            return super().output(outs, msg, display_id, cell_index)
+
     nb = nbformat.read(nb_path, as_version=4)
-    for cell in nb.cells:
-        if cell.cell_type == "code":
-            cell.outputs = []
-    km = AsyncKernelManager(kernel_name=KERNEL_NAME, transport="ipc",
-                       ip=str(root / "ctl" / "kernel"))
-    client = NotebookClient(nb, km=km, timeout=cell_timeout, allow_errors=True,
-                            startup_timeout=60, kernel_name=KERNEL_NAME,
-                            shutdown_kernel="immediate",
-                            resources={"metadata": {"path": str(root / "work")}})
-    failure = ""
-    errors = []
+    for c in nb.cells:
+        if c.cell_type == "code":
+            c.outputs = []
+    km = AsyncKernelManager(kernel_name="python3")
+    client = Client(nb, km=km, timeout=cell_timeout, allow_errors=True, startup_timeout=60,
+                    kernel_name="python3", shutdown_kernel="immediate",
+                    resources={"metadata": {"path": str(home)}})
+    n = 0
     try:
-        with client.setup_kernel(cwd=str(root / "work")):
-            client.kc.execute(_CAP_OUTPUT, silent=True, store_history=False)
-            n = 0
-            for index, cell in enumerate(nb.cells):
-                if cell.cell_type != "code":
+        with client.setup_kernel(cwd=str(home), pass_fds=(log_fd,)):
+            for index, c in enumerate(nb.cells):
+                if c.cell_type != "code":
                     continue
                 n += 1
                 try:
-                    client.execute_cell(cell, index)
+                    client.execute_cell(c, index)
                 except CellTimeoutError:
-                    failure = f"timeout: code cell {n} ran longer than {cell_timeout:g} s"
-                    break
+                    result["failure"] = {"kind": "cell-timeout", "cell": n}
+                    return
                 except DeadKernelError:
-                    failure = f"the kernel died in code cell {n} (out of memory, or it exited)"
-                    break
-                for out in cell.outputs:
-                    if out.get("output_type") == "error" and len(errors) < 3:
-                        errors.append(f"error in code cell {n}: {out.get('ename', '')}: "
-                                      f"{str(out.get('evalue', ''))[:150]}")
-                cell.outputs = []          # not kept: only the checks count
+                    result["failure"] = {"kind": "dead", "cell": n}
+                    return
+                for out in c.outputs:
+                    if out.get("output_type") == "error" and len(result["errors"]) < 3:
+                        result["errors"].append({"cell": n, "ename": str(out.get("ename"))[:80]})
+                c.outputs = []
     except DeadKernelError:
-        failure = failure or "the kernel died"
-    except Exception as exc:  # noqa: BLE001 - report, never crash the batch
-        failure = failure or f"the notebook could not be run ({type(exc).__name__}: " \
-            f"{str(exc)[:150]})"
-    if not failure and errors:
-        failure = "; ".join(errors)
-    Path(result).write_text(json.dumps({"failure": failure}), encoding="utf-8")
-    return 0
+        result["failure"] = result["failure"] or {"kind": "dead", "cell": n}
 
 
-def _run(nb_path, cell_timeout, timeout, memory, confine):
-    """Run one notebook in a fresh confined kernel: (check log lines, failure text)."""
-    top = Path(tempfile.mkdtemp(prefix="wt-grade-"))
-    private = Path(tempfile.mkdtemp(prefix="wt-grade-result-"))
-    result = private / "result.json"
-    try:
-        work, ctl = top / "work", top / "ctl"
-        work.mkdir()
-        ctl.mkdir()
-        (ctl / "site").mkdir()
-        (ctl / "site" / "sitecustomize.py").write_text(_SITE, encoding="utf-8")
-        shutil.copy(nb_path, work / "submission.ipynb")
-        _kernel_spec(ctl, top, memory, confine)
-        env = {k: v for k, v in os.environ.items()
-               if not k.startswith(("JUPYTER", "WHITTAKER_TEACH", "IPYTHON"))}
-        path = [str(ctl / "site")] + [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p]
-        env.update({"HOME": str(work), "TMPDIR": str(work), "JUPYTER_PATH": str(ctl),
-                    "JUPYTER_DATA_DIR": str(ctl), "JUPYTER_RUNTIME_DIR": str(ctl),
-                    "JUPYTER_CONFIG_DIR": str(ctl), "IPYTHONDIR": str(ctl / "ipython"),
-                    "PYTHONPATH": os.pathsep.join(path), "PYTHONHASHSEED": "0",
-                    "WHITTAKER_TEACH_CHECK_LOG": str(ctl / LOG_NAME), "MPLBACKEND": "Agg",
-                    "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1",
-                    "http_proxy": "http://127.0.0.1:9", "https_proxy": "http://127.0.0.1:9",
-                    "no_proxy": ""})
-        cmd = [sys.executable, "-m", "whittaker_teach.exercises.grade", "run",
-               str(work / "submission.ipynb"), str(top), str(cell_timeout), str(memory),
-               "1" if confine else "0", str(result)]
-        proc = subprocess.Popen(cmd, env=env, cwd=str(ctl), stdout=subprocess.DEVNULL,
-                                stderr=subprocess.DEVNULL, start_new_session=True)
+# ---------------------------------------------------------------- running one submission
+class _Reader(threading.Thread):
+    """Reads at most ``limit`` bytes of a pipe and drops the rest (the pipe never blocks)."""
+
+    def __init__(self, stream, limit):
+        super().__init__(daemon=True)
+        self.stream, self.limit, self.data, self.over = stream, limit, bytearray(), False
+
+    def run(self):
         try:
-            proc.wait(timeout=timeout)
-            try:
-                failure = str(json.loads(result.read_text(encoding="utf-8"))["failure"])
-            except (OSError, ValueError, KeyError, TypeError):
-                failure = "the grader could not run the notebook (it stopped without a result)"
+            while True:
+                chunk = self.stream.read1(65536)
+                if not chunk:
+                    break
+                if len(self.data) + len(chunk) > self.limit:
+                    self.over = True
+                else:
+                    self.data += chunk
+        except (OSError, ValueError):
+            pass
+
+
+@dataclass
+class Settings:
+    cell_timeout: float = CELL_TIMEOUT
+    timeout: float = NOTEBOOK_TIMEOUT
+    memory_mb: int = MEMORY_MB
+    processes: int = PROCESSES
+    disk_mb: int = DISK_MB
+    unsafe: bool = False
+
+
+def _run(raw, settings, package=None, solvers=True, slot=0):
+    """Run one notebook (its bytes): (worker result or None, grader-side failure or '', the
+    check log as text)."""
+    from . import sandbox
+    top = Path(tempfile.mkdtemp(prefix="wt-grade-"))
+    os.chmod(top, 0o755)
+    nb_file = top / "submission.ipynb"
+    nb_file.write_bytes(raw)
+    os.chmod(nb_file, 0o644)
+    limits = sandbox.Limits(settings.memory_mb, settings.processes, settings.disk_mb)
+    groups, hit = None, set()
+    log_r, log_w = os.pipe()
+    try:
+        if settings.unsafe:
+            scratch = top / "scratch"
+            scratch.mkdir()
+            env = sandbox.environment(0)
+            env.pop("WHITTAKER_TEACH_SANDBOX")
+            env = {k: v.replace(sandbox.SCRATCH, str(scratch)) for k, v in env.items()}
+            import whittaker_teach
+            env["PYTHONPATH"] = str(Path(whittaker_teach.__file__).resolve().parents[1])
+            cmd = [sys.executable, "-m", "whittaker_teach.exercises.grade", "worker",
+                   str(nb_file), str(scratch), f"{settings.cell_timeout:g}",
+                   str(settings.memory_mb), str(settings.processes), str(settings.disk_mb),
+                   str(log_w)]
+            cwd = str(scratch)
+        else:
+            name = f"wt-grade-{os.getpid()}-{slot}-{time.monotonic_ns()}"
+            groups = sandbox.Cgroups.make(name, limits)
+            cmd = sandbox.command(sandbox.UID_BASE + slot, package.path(solvers), nb_file,
+                                  limits, settings.cell_timeout, log_w, groups.procs)
+            env, cwd = {"PATH": "/usr/bin:/bin"}, str(top)
+        try:
+            proc = subprocess.Popen(cmd, env=env, cwd=cwd, stdin=subprocess.DEVNULL,
+                                    stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                    start_new_session=True, pass_fds=(log_w,))
+        finally:
+            os.close(log_w)
+        out, err = _Reader(proc.stdout, sandbox.MAX_RESULT_BYTES), _Reader(proc.stderr, 20_000)
+        log = _Reader(os.fdopen(log_r, "rb"), MAX_LOG_BYTES)
+        log_r = None
+        for reader in (out, err, log):
+            reader.start()
+        failure = ""
+        try:
+            proc.wait(timeout=settings.timeout)
         except subprocess.TimeoutExpired:
-            failure = f"timeout: the notebook ran longer than {timeout:g} s"
+            failure = f"timeout: the notebook ran longer than {settings.timeout:g} s"
         finally:
             _kill(proc)
-        log = ctl / LOG_NAME
-        lines = []
-        if log.is_file() and not log.is_symlink():
-            with open(log, "rb") as f:
-                raw = f.read(20_000_000)
-            lines = raw.decode("utf-8", "replace").splitlines()
-        return lines, failure
+            if groups is not None:
+                hit = groups.hit()
+                groups.close()
+        for reader in (out, err, log):
+            reader.join(10)
+        result = None
+        if not failure:
+            try:
+                result = json.loads(bytes(out.data).decode("utf-8"))
+                if not isinstance(result, dict):
+                    result = None
+            except (ValueError, RecursionError, UnicodeDecodeError):
+                result = None
+        if result is None and not failure:
+            failure = "the notebook's run ended without a result (its processes were killed)"
+            if b"bwrap:" in bytes(err.data) or proc.returncode == 97:
+                failure = "the grader could not start the sandbox"
+                print(f"grade: the sandbox did not start: "
+                      f"{bytes(err.data).decode('utf-8', 'replace').strip()[:300]}",
+                      file=sys.stderr)
+        if hit:
+            failure = "; ".join(x for x in (failure, "it reached " + " and ".join(
+                {"memory": f"the memory limit ({settings.memory_mb} MB over all its processes)",
+                 "pids": f"the limit of {settings.processes} processes and threads"}[h]
+                for h in sorted(hit))) if x)
+        return result, failure, bytes(log.data).decode("utf-8", "replace")
     finally:
+        if log_r is not None:
+            os.close(log_r)
         shutil.rmtree(top, ignore_errors=True)
-        shutil.rmtree(private, ignore_errors=True)
 
 
 def _kill(proc):
-    """Kill the worker's whole session (the worker and its kernel)."""
+    """Kill the run's whole session (in the sandbox: bubblewrap, whose namespace goes with it)."""
     import signal
     try:
         os.killpg(proc.pid, signal.SIGKILL)
@@ -430,82 +442,188 @@ def _kill(proc):
         pass
 
 
-# ---------------------------------------------------------------- grading
-def _last_checks(lines, exercise):
-    """{part: record} of the last check of each part of this exercise."""
-    out = {}
-    for line in lines:
+# ---------------------------------------------------------------- scoring, in the grader
+def _records(log):
+    """The records of a check log that look like records (never parsing anything deep)."""
+    out = []
+    if not isinstance(log, str):
+        return out
+    for line in log.splitlines():
+        line = line.strip()
+        if not line.startswith("{") or len(line) > MAX_LOG_LINE:
+            continue
+        if line.count("{") + line.count("[") > 4:        # a record is one flat object
+            continue
         try:
             rec = json.loads(line)
-        except ValueError:
+        except (ValueError, RecursionError):
             continue
-        if not isinstance(rec, dict) or rec.get("exercise") != exercise:
-            continue
-        part = rec.get("part")
-        if isinstance(part, str):
-            out[part] = rec
+        if isinstance(rec, dict):
+            out.append(rec)
     return out
 
 
+def _last_checks(records, exercise):
+    """{part: record} of the last check of each part of this exercise."""
+    out = {}
+    for rec in records:
+        if rec.get("exercise") == exercise and isinstance(rec.get("part"), str):
+            out[rec["part"]] = rec
+    return out
+
+
+_UNRECORDABLE = {
+    "list": "a list", "tuple": "a tuple", "dict": "a dict", "set": "a set",
+    "bool": "True or False", "complex": "a complex number", "function": "a function",
+    "too-large": "an answer too large to grade (simplify it)"}
+
+
 def _recheck(exercise, part, rec):
-    """(ok, message) of a recorded answer, checked again here."""
-    from .catalog import EXERCISES
-    from .specs import check_part
-    if rec.get("status") == "unanswered":
+    """(ok, message) of a recorded answer, checked again here, in the grader's own words."""
+    from . import check
+    kind = rec.get("kind", rec.get("status"))
+    if kind == "unanswered":
         return False, "not answered"
     answer = rec.get("answer")
     if not isinstance(answer, str):
-        why = str(rec.get("why") or "the answer could not be recorded for grading")
-        return False, why[:1].upper() + why[1:300]
-    ex = EXERCISES[exercise]
-    f = check_part(ex, ex.parts[part], answer, max_length=MAX_ANSWER_CHARS)
+        what = _UNRECORDABLE.get(rec.get("what"), "something that is not an answer")
+        return False, (f"The answer could not be graded: it is {what}; answer with an "
+                       "expression, a number or a string")
+    f = check(exercise, answer[:MAX_ANSWER_CHARS], part=part)
     if f.status == "unanswered":
         return False, "not answered"
-    return bool(f.ok), f.message
+    return bool(f.ok), str(f.message)
 
 
-def prepare(path):
-    """(name, exercise or None, rows if it cannot be run)."""
-    from . import exercises
-    name = Path(path).name
-    nb, why = read_submission(path)
-    if nb is None:
-        return name, None, [Row(name, "", "", False, why)]
-    exercise = exercise_of(nb)
-    if exercise not in exercises():
-        return name, None, [Row(name, str(exercise or "")[:40], "", False,
-                                "not a notebook of the exercises (no check(...) of a known "
-                                "exercise in it)")]
-    return name, exercise, None
+def _known_exception(name):
+    import builtins
+    obj = getattr(builtins, name, None) if isinstance(name, str) and name.isidentifier() else None
+    if isinstance(obj, type) and issubclass(obj, BaseException):
+        return name
+    return "an exception of its own"
 
 
-def score(name, exercise, lines, failure):
-    """The rows of a submission that ran: one per part, and one for a failure."""
+def _failure_text(result, settings):
+    """The grader's own words for what the worker reported (numbers and known names only)."""
+    def n(v):
+        return v if isinstance(v, int) and 0 <= v < 1_000_000 else 0
+    parts = []
+    f = result.get("failure")
+    if isinstance(f, dict):
+        kind, c = f.get("kind"), n(f.get("cell"))
+        if kind == "cell-timeout":
+            parts.append(f"timeout: code cell {c} ran longer than {settings.cell_timeout:g} s")
+        elif kind == "dead":
+            parts.append(f"the kernel died in code cell {c} (it exited, or it was killed: "
+                         "out of memory?)")
+        elif kind == "start":
+            parts.append("the notebook could not be run (the kernel did not start)")
+    errors = result.get("errors")
+    if isinstance(errors, list) and not parts:
+        for e in errors[:3]:
+            if isinstance(e, dict):
+                parts.append(f"error in code cell {n(e.get('cell'))}: "
+                             f"{_known_exception(e.get('ename'))}")
+    return "; ".join(parts)
+
+
+def _modules():
+    """The dotted names of the grader's own whittaker_teach modules and packages."""
+    import whittaker_teach
+    root = Path(whittaker_teach.__file__).resolve().parent
+    names = {"whittaker_teach"}
+    for path in root.rglob("*.py"):
+        parts = path.relative_to(root).with_suffix("").parts
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        names.add(".".join(("whittaker_teach",) + parts))
+    return names
+
+
+def _solver_note(records):
+    known, names = _modules(), []
+    for rec in records:
+        if rec.get("kind") == "solver":
+            what = rec.get("what")
+            name = what if isinstance(what, str) and what in known else "a part of " \
+                "whittaker_teach"
+            if name not in names:
+                names.append(name)
+    if not names:
+        return ""
+    return ("the notebook imported parts of the library (" + ", ".join(names[:3]) + ") that "
+            "this exercise does not allow while graded: only check and setup are available")
+
+
+def _exercise(exercise):
+    try:
+        from .catalog import EXERCISES
+        return EXERCISES[exercise]
+    except (ImportError, KeyError, TypeError):
+        return None
+
+
+def points(exercise):
+    """{part: points}: the exercise's own points, else 1 point per part."""
     from . import parts
-    checks = _last_checks(lines, exercise)
-    rows = []
+    ex = _exercise(exercise)
+    out = {}
     for part in parts(exercise):
+        p = getattr(getattr(ex, "parts", {}).get(part), "points", None) if ex else None
+        out[part] = p if isinstance(p, (int, float)) and not isinstance(p, bool) and p >= 0 else 1
+    return out
+
+
+def solvers_allowed(exercise):
+    """May a graded notebook of this exercise use the library's solvers?"""
+    flag = getattr(_exercise(exercise), "solvers", None)
+    return bool(flag) if isinstance(flag, bool) else exercise in _SOLVERS_FALLBACK
+
+
+def score(name, exercise, result, failure, log, settings=None):
+    """The rows of a submission that ran: one per part, and one for a failure."""
+    settings = settings or Settings()
+    records = _records(log)
+    checks = _last_checks(records, exercise)
+    rows = []
+    for part, pts in points(exercise).items():
         rec = checks.get(part)
         if rec is None:
-            rows.append(Row(name, exercise, part, False, "not answered"))
-            continue
-        ok, message = _recheck(exercise, part, rec)
-        rows.append(Row(name, exercise, part, ok, message))
+            ok, message = False, "not answered"
+        else:
+            try:
+                ok, message = _recheck(exercise, part, rec)
+            except (Exception, RecursionError) as exc:  # noqa: BLE001
+                ok, message = False, f"the grader could not check this answer " \
+                    f"({type(exc).__name__}); please report it"
+        rows.append(Row(name, exercise, part, ok, message, pts if ok else 0, pts))
+    failure = "; ".join(x for x in (failure, _failure_text(result or {}, settings),
+                                    _solver_note(records)) if x)
     if failure:
-        rows.append(Row(name, exercise, "", False, failure))
+        rows.append(Row(name, exercise, "", False, failure, 0, 0))
     return rows
 
 
+def prepare(path, name=None):
+    """(name, exercise or None, the notebook's bytes, rows if it cannot be run)."""
+    from . import exercises
+    name = name or Path(path).name
+    nb, raw, why = _read(path)
+    if nb is None:
+        return name, None, None, [Row(name, "", "", False, why, 0, 0)]
+    exercise = exercise_of(nb)
+    if exercise not in exercises():
+        return name, None, None, [Row(name, "", "", False, "not a notebook of the exercises "
+                                      "(no check(...) of a known exercise in it)", 0, 0)]
+    return name, exercise, raw, None
+
+
 def grade_one(path, cell_timeout=CELL_TIMEOUT, timeout=NOTEBOOK_TIMEOUT, memory=MEMORY_MB,
-              confine=None):
+              unsafe=False):
     """The rows of one submission (runs it; see the module docstring)."""
-    name, exercise, rows = prepare(path)
-    if rows is not None:
-        return rows
-    if confine is None:
-        confine = confinement_available()
-    lines, failure = _run(path, cell_timeout, timeout, memory, confine)
-    return score(name, exercise, lines, failure)
+    rows, _ = grade([path], None, cell_timeout=cell_timeout, timeout=timeout, memory=memory,
+                    quiet=True, unsafe=unsafe)
+    return rows
 
 
 def _progress(total, quiet):
@@ -528,56 +646,113 @@ def _progress(total, quiet):
         return Counter()
 
 
+def _names(paths):
+    """A unique name per submission: the file name, or the path where names repeat."""
+    base = [Path(p).name for p in paths]
+    return [b if base.count(b) == 1 else str(p) for b, p in zip(base, paths)]
+
+
+class _Writer:
+    """The CSV, written and flushed submission by submission."""
+
+    def __init__(self, out):
+        self.f = open(out, "w", newline="", encoding="utf-8") if out else None
+        if self.f:
+            self.w = csv.writer(self.f)
+            self.w.writerow(HEADER)
+            self.f.flush()
+
+    def rows(self, rows):
+        if self.f:
+            for r in rows:
+                self.w.writerow(r.csv())
+            self.f.flush()
+            os.fsync(self.f.fileno())
+
+    def close(self):
+        if self.f:
+            self.f.close()
+
+
 def grade(paths, out, feedback=None, jobs=2, cell_timeout=CELL_TIMEOUT,
-          timeout=NOTEBOOK_TIMEOUT, memory=MEMORY_MB, quiet=False, confine=None):
+          timeout=NOTEBOOK_TIMEOUT, memory=MEMORY_MB, quiet=False, unsafe=False,
+          processes=PROCESSES, disk=DISK_MB, gradebook=None, canvas=None, moodle=None):
     """Grade the submissions into the CSV ``out``: (rows, summary line).
 
-    The notebooks run ``jobs`` at a time (each in its own worker process and
-    kernel); their recorded answers are then checked again here, in the main
-    thread, where each check has its time budget.
+    The notebooks run ``jobs`` at a time, each in its own sandbox; their
+    recorded answers are checked here, in the main thread (where each check
+    has its time budget), as each run ends, and its rows written at once.
+    Raises :class:`SandboxUnavailable` when the sandbox cannot be had and
+    ``unsafe`` is not set.
     """
-    from .catalog import EXERCISES
-    if confine is None:
-        confine = confinement_available()
-    prepared = {p: prepare(p) for p in paths}
-    for _, exercise, _ in prepared.values():
-        if exercise is not None:
-            EXERCISES[exercise].build()      # once, before the notebooks run
-    bar = _progress(len(paths), quiet)
-    todo = [p for p in paths if prepared[p][2] is None]
-    runs = {}
-    with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
-        futures = {pool.submit(_safe_run, p, cell_timeout, timeout, memory, confine): p
-                   for p in todo}
-        for p in paths:
-            if prepared[p][2] is not None and bar is not None:
-                bar.update(1)
-        for fut in as_completed(futures):
-            runs[futures[fut]] = fut.result()
-            if bar is not None:
-                bar.update(1)
-    if bar is not None:
-        bar.close()
+    from . import sandbox
+    from .gradebook import write_exports
+    why = sandbox.available()
+    if why and not unsafe:
+        raise SandboxUnavailable(why)
+    os.environ.pop("WHITTAKER_TEACH_CHECK_LOG", None)      # the grader checks, never records
+    settings = Settings(cell_timeout, timeout, memory, processes, disk, unsafe)
+    paths = [str(p) for p in paths]
+    names = _names(paths)
+    writer = _Writer(out)
+    package = None if unsafe else sandbox.PackageCopy()
     results = {}
-    for p in paths:
-        name, exercise, rows = prepared[p]
-        results[p] = rows if rows is not None else score(name, exercise, *runs[p])
-    rows = [r for p in paths for r in results[p]]
-    with open(out, "w", newline="", encoding="utf-8") as f:
-        w = csv.writer(f)
-        w.writerow(["submission", "exercise", "part", "ok", "message"])
-        for r in rows:
-            w.writerow(r.csv())
-    if feedback:
-        write_feedback(feedback, paths, results)
-    return rows, summary(rows, len(paths))
+    bar = _progress(len(paths), quiet)
 
+    def done(i, rows):
+        results[i] = rows
+        writer.rows(rows)
+        if feedback:
+            write_feedback(feedback, [names[i]], {names[i]: rows})
+        if bar is not None:
+            bar.update(1)
 
-def _safe_run(path, cell_timeout, timeout, memory, confine):
     try:
-        return _run(path, cell_timeout, timeout, memory, confine)
-    except Exception as exc:  # noqa: BLE001 - one submission never stops the batch
-        return [], f"the grader could not run it ({type(exc).__name__}: {str(exc)[:150]})"
+        todo = []
+        for i, p in enumerate(paths):
+            name, exercise, raw, rows = prepare(p, names[i])
+            if rows is not None:
+                done(i, rows)
+            else:
+                todo.append((i, name, exercise, raw))
+        for exercise in {t[2] for t in todo}:
+            ex = _exercise(exercise)
+            if ex is not None and hasattr(ex, "build"):
+                ex.build()                     # once, before the notebooks run
+        slots = queue.Queue()
+        for s in range(max(1, jobs)):
+            slots.put(s)
+
+        def run(raw, solvers):
+            slot = slots.get()
+            try:
+                return _run(raw, settings, package, solvers, slot)
+            except Exception as exc:  # noqa: BLE001 - one submission never stops the batch
+                return None, f"the grader could not run it ({type(exc).__name__})", ""
+            finally:
+                slots.put(slot)
+
+        with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+            futures = {pool.submit(run, raw, solvers_allowed(ex)): (i, name, ex)
+                       for i, name, ex, raw in todo}
+            for fut in as_completed(futures):
+                i, name, ex = futures[fut]
+                try:
+                    rows = score(name, ex, *fut.result(), settings)
+                except (Exception, RecursionError) as exc:  # noqa: BLE001
+                    rows = [Row(name, ex, "", False, "the grader could not grade it "
+                                f"({type(exc).__name__}); please report it", 0, 0)]
+                done(i, rows)
+    finally:
+        writer.close()
+        if bar is not None:
+            bar.close()
+        if package is not None:
+            package.close()
+    ordered = [results[i] for i in sorted(results)]
+    rows = [r for rs in ordered for r in rs]
+    write_exports(ordered, gradebook=gradebook, canvas=canvas, moodle=moodle)
+    return rows, summary(rows, len(paths))
 
 
 def summary(rows, n):
@@ -596,56 +771,72 @@ _FEEDBACK_CSS = ("<style>body{font-family:sans-serif;max-width:60em;margin:2em a
                  "vertical-align:top}td:nth-child(2){white-space:nowrap}</style>")
 
 
-def write_feedback(folder, paths, results):
-    """One HTML page per submission: its parts, right or not, and the messages."""
+def page_name(name):
+    """The feedback page of a submission: its name if that is a plain lower-case file name,
+    else the name made plain and a hash of the exact name (two names never share a page)."""
+    import hashlib
+    stem = "".join(c if c.isascii() and (c.isalnum() or c in "-_.") else "_" for c in name)
+    if stem != name or stem != stem.lower() or stem.startswith((".", "-")) or not stem \
+            or len(stem) > 100:       # (upper case too: file systems that ignore case)
+        digest = hashlib.sha256(name.encode("utf-8", "surrogatepass")).hexdigest()[:10]
+        stem = stem.lstrip(".-")[:80] + "-" + digest
+    return f"{stem}.html"
+
+
+def write_feedback(folder, names, results):
+    """One HTML page per submission: its parts, right or not, and the grader's messages."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
-    for p in paths:
-        rows = results[p]
-        name = Path(p).name
+    for name in names:
+        rows = results[name]
         items = []
         for r in rows:
             colour = "#2e7d32" if r.ok else "#c62828"
             label = "right" if r.ok else ("could not run" if not r.part else "not yet right")
+            pts = f"{_num(r.points)} / {_num(r.max_points)}" if r.part else ""
             items.append(f'<tr><td>{html.escape(r.part or "(notebook)")}</td>'
-                         f'<td style="color:{colour}">{label}</td>'
+                         f'<td style="color:{colour}">{label}</td><td>{pts}</td>'
                          f"<td>{html.escape(r.message)}</td></tr>")
         exercise = html.escape(rows[0].exercise) if rows else ""
         right = sum(1 for r in rows if r.part and r.ok)
         total = sum(1 for r in rows if r.part)
+        got = sum(r.points for r in rows if r.part)
+        most = sum(r.max_points for r in rows if r.part)
         page = ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
                 "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
                 f"<title>Feedback: {html.escape(name)}</title>" + _FEEDBACK_CSS +
                 f"</head><body><h1>Feedback on {html.escape(name)}</h1>"
-                f"<p>Exercise: {exercise}. {right} of {total} parts right.</p>"
-                "<table><tr><th>part</th><th>result</th><th>message</th></tr>"
+                f"<p>Exercise: {exercise}. {right} of {total} parts right: "
+                f"{_num(got)} of {_num(most)} points.</p>"
+                "<table><tr><th>part</th><th>result</th><th>points</th><th>message</th></tr>"
                 + "".join(items) + "</table></body></html>\n")
-        stem = "".join(c if c.isalnum() or c in "-_." else "_" for c in name)
-        (folder / f"{stem}.html").write_text(page, encoding="utf-8")
+        (folder / page_name(name)).write_text(page, encoding="utf-8")
 
 
 def main(args):
     """The ``grade`` subcommand."""
+    from . import sandbox
     paths = [str(p) for p in args.submissions]
-    missing = [p for p in paths if not os.path.exists(p)]
+    why = sandbox.available()
+    if why and not args.unsafe:
+        print(f"grade: refusing to run students' notebooks without the sandbox: {why}.\n"
+              "Run as root on Linux with bubblewrap (make sysdeps), or pass --unsafe to run "
+              "them as plain processes of your user, with per-process limits only.",
+              file=sys.stderr)
+        return 2
     start = time.monotonic()
     rows, line = grade(paths, args.out, args.feedback, args.jobs, args.cell_timeout,
-                       args.timeout, args.memory, args.quiet)
+                       args.timeout, args.memory, args.quiet, unsafe=bool(why),
+                       gradebook=args.gradebook, canvas=args.canvas, moodle=args.moodle)
     took = time.monotonic() - start
     print(f"{line} ({took:.0f} s); grades in {args.out}"
           + (f", feedback in {args.feedback}" if args.feedback else ""))
-    if missing:
-        print(f"(not found: {', '.join(missing[:5])}{' ...' if len(missing) > 5 else ''})")
-    if not confinement_available():
-        print("(the kernels were not confined: grade as root on Linux, in a container, to "
-              "give each its own network and read-only file systems)")
+    if why:
+        print(f"(UNSAFE: the notebooks ran without the sandbox: {why})")
     return 0
 
 
 if __name__ == "__main__":
-    if len(sys.argv) > 1 and sys.argv[1] == "kernel":
-        _kernel_main(sys.argv[2:])
-    elif len(sys.argv) > 1 and sys.argv[1] == "run":
+    if len(sys.argv) > 1 and sys.argv[1] == "worker":
         sys.exit(_worker_main(sys.argv[2:]))
-    else:
-        sys.exit("usage: python -m whittaker_teach grade SUBMISSION.ipynb ... --out grades.csv")
+    sys.exit("usage: python -m whittaker_teach grade SUBMISSION.ipynb ... --out grades.csv")

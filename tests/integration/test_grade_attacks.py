@@ -1,0 +1,342 @@
+"""A hostile class, graded in one batch: each attack class of issue 24 beside honest and wrong
+students.
+
+Every test below reads the same batch (graded once, two at a time, in the sandbox):
+the honest students are graded right, the wrong one wrong, each attack is held (its own
+rows only, nothing from its kernel in the CSV or the feedback), nothing is left running,
+nothing is written outside the sandboxes' scratch.  Needs root and bubblewrap (as CI has);
+elsewhere these tests skip and ``grade`` refuses to run without ``--unsafe``.
+"""
+import csv
+import json
+import os
+import socket
+import threading
+from pathlib import Path
+
+import nbformat
+import pytest
+
+from whittaker_teach.exercises import grade as grading
+from whittaker_teach.exercises import sandbox
+
+pytestmark = pytest.mark.skipif(bool(sandbox.available()), reason=sandbox.available() or "-")
+
+EX = "kepler-orbit"
+RIGHT = {"L_star": "sqrt(2*h + 2*m*mu/r)*sqrt(m*(r^2 + r'^2))",
+         "r_pp": "(r^2*(2*h*r + m*mu) + r'^2*(4*h*r + 3*m*mu))/(2*r*(h*r + m*mu))",
+         "h": "-m*mu*(1 - e^2)/(2*p)"}
+WRONG = {"L_star": "-sqrt(2*h + 2*m*mu/r)*sqrt(m*(r^2 + r'^2))",
+         "r_pp": "(r^2*(2*h*r + m*mu) + r'^2*(4*h*r + 3*m*mu))/(2*(h*r + m*mu))",
+         "h": "-m*mu*Abs(1 - e^2)/(2*p)"}
+START = "from whittaker_teach.exercises import check\nimport os, sys, time, signal, json"
+SECRET = "TOPSECRET-7f3a"
+MEMORY_MB, DISK_MB = 1000, 64
+
+
+def checks(answers, parts=None):
+    return "\n".join(f"check({EX!r}, {answers[p]!r}, part={p!r})" for p in (parts or RIGHT))
+
+
+def steal(found):
+    """Cell: if ``found`` (a Python condition) holds, hand in the right answers, else wrong ones."""
+    return f"if {found}:\n    " + checks(RIGHT).replace("\n", "\n    ") + \
+        "\nelse:\n    " + checks(WRONG).replace("\n", "\n    ")
+
+
+SCAN_OTHERS = '''
+def others():
+    """What this kernel can see of anything but its own sandbox."""
+    seen = []
+    for pid in os.listdir("/proc"):
+        if not pid.isdigit():
+            continue
+        try:
+            cmd = open(f"/proc/{pid}/cmdline", "rb").read().decode(errors="replace")
+        except OSError:
+            continue
+        if ".ipynb" in cmd and "/grade/submission.ipynb" not in cmd:
+            seen.append(cmd)
+        try:
+            for name in os.listdir(f"/proc/{pid}/root/scratch/.grade"):
+                if int(pid) > 1 and open(f"/proc/{pid}/root/scratch/.grade/" + name).read() \\
+                        != open(os.environ["WHITTAKER_TEACH_CHECK_LOG"]).read():
+                    seen.append(name)
+        except OSError:
+            pass
+    return seen
+
+
+found = []
+for _ in range(8):
+    found += others()
+    time.sleep(0.5)
+'''
+
+HUNT_ANSWERS = '''
+found = []
+for top, dirs, files in os.walk("/"):
+    dirs[:] = [d for d in dirs if os.path.join(top, d) not in ("/proc", "/usr", "/dev")]
+    for f in files:
+        path = os.path.join(top, f)
+        if ("whittaker" in path and (f == "catalog.py" or f.endswith(".ipynb")
+                                     and path != "/grade/submission.ipynb")) \\
+                or "solutions" in path or ("exercises" in path and f.endswith(".json")):
+            found.append(path)
+'''
+
+
+def notebook(path, cells):
+    nb = nbformat.v4.new_notebook()
+    nb.metadata["whittaker_teach"] = {"exercise": EX}
+    nb.cells = [nbformat.v4.new_code_cell(c) for c in cells]
+    nbformat.write(nb, path)
+
+
+def make_class(folder, outside):
+    """{file name: {part: expected ok}} (None: not a notebook)."""
+    right, wrong, none = dict.fromkeys(RIGHT, True), dict.fromkeys(RIGHT, False), {}
+    first = {"L_star": True, "r_pp": False, "h": False}
+    plan = {
+        # honest and wrong students (names a spreadsheet would read as formulas, too)
+        "honest_1.ipynb": ([START, checks(RIGHT)], right),
+        "honest~1.ipynb": ([START, checks(RIGHT), "pass"], right),
+        "=1+1.ipynb": ([START, checks(RIGHT)], right),
+        "-dash.ipynb": ([START, checks(RIGHT)], right),
+        "wrong.ipynb": ([START, checks(WRONG)], wrong),
+        # one student stops the whole class
+        "log-brackets.ipynb": ([START, checks(RIGHT, ["L_star"]),
+                                "log = os.fdopen(int(os.environ['WHITTAKER_TEACH_CHECK_FD']), "
+                                "'w', closefd=False)\n"
+                                "log.write('[' * 100_000 + '\\n')\n"
+                                "log.write('{\"a\": \"' + 'x' * 3_000_000 + '\\n')\n"
+                                "log.write('{' * 50_000 + '\\n')\nlog.flush()"], first),
+        "kill-grader.ipynb": ([START, checks(RIGHT, ["L_star"]),
+                               "for pid in range(1, 400):\n    try:\n"
+                               "        if pid != os.getpid(): os.kill(pid, 9)\n"
+                               "    except OSError: pass\nos.kill(-1, 9)"], first),
+        # students reach each other; answers in reach
+        "snoop.ipynb": ([START, SCAN_OTHERS, steal("found")], wrong),
+        "assassin.ipynb": ([START, "end = time.time() + 4\nwhile time.time() < end:\n"
+                            "    for pid in os.listdir('/proc'):\n"
+                            "        if pid.isdigit() and int(pid) != os.getpid():\n"
+                            "            try:\n"
+                            "                c = open(f'/proc/{pid}/cmdline','rb').read()\n"
+                            "                if b'ipykernel' in c: os.kill(int(pid), 9)\n"
+                            "            except OSError: pass\n    time.sleep(0.2)",
+                            checks(WRONG)], wrong),
+        "catalog.ipynb": ([START, "from whittaker_teach.exercises.catalog import EXERCISES\n"
+                           "check('kepler-orbit', str(EXERCISES['kepler-orbit'].parts['h']"
+                           ".expected), part='h')"], none),
+        "solver.ipynb": ([START, "import whittaker_teach as wt\nk = wt.examples.kepler()",
+                          "import whittaker_teach.reduction"], none),
+        "hunt-solutions.ipynb": ([START, HUNT_ANSWERS, steal("found")], wrong),
+        # secrets
+        "secrets.ipynb": ([START, checks(RIGHT, ["L_star"]),
+                           f"check({EX!r}, os.environ.get('WT_GRADER_SECRET', 'nothing'), "
+                           "part='h')",
+                           f"s = open({str(outside / 'secret.txt')!r}).read()\n"
+                           f"check({EX!r}, s, part='r_pp')"], first),
+        "sockets-dev.ipynb": ([START, checks(RIGHT, ["L_star"]),
+                               "import socket\ns = socket.socket(socket.AF_UNIX)\n"
+                               f"s.connect({str(outside / 'lecturer.sock')!r})\n"
+                               "s.sendall(b'hello')",
+                               "open('/dev/wt-attack', 'w').write('x')",
+                               "open('/proc/sys/kernel/hostname', 'w').write('x')"], first),
+        # resources
+        "forks-memory.ipynb": ([START, checks(RIGHT, ["L_star"]),
+                                "import subprocess\n"
+                                "kids = [subprocess.Popen([sys.executable, '-c', \"b = b'x' * "
+                                "300_000_000; import time; time.sleep(30)\"]) "
+                                "for _ in range(5)]\ntime.sleep(6)"], first),
+        "processes.ipynb": ([START, checks(RIGHT, ["L_star"]),
+                             "import subprocess\n"
+                             "ps = [subprocess.Popen(['sleep', '600']) for _ in range(300)]"],
+                            first),
+        "daemon.ipynb": ([START, "if os.fork() == 0:\n    os.setsid()\n"
+                          "    if os.fork() == 0:\n        time.sleep(600)\n    os._exit(0)",
+                          checks(RIGHT)], right),
+        "flood.ipynb": ([START, "from IPython.display import display, HTML\n"
+                         "for i in range(100):\n    display(HTML('x' * 1_000_000))",
+                         "os.write(1, b'y' * 50_000_000)\nprint('z' * 20_000_000)",
+                         checks(RIGHT)], right),
+        "disk.ipynb": ([START, checks(RIGHT, ["L_star"]),
+                        "for i in range(30):\n"
+                        "    open(f'big{i}', 'wb').write(b'x' * 20_000_000)"], first),
+        # output the lecturer opens
+        "forged.ipynb": ([START, checks(WRONG),
+                          "os.write(int(os.environ['WHITTAKER_TEACH_CHECK_FD']), json.dumps("
+                          "{'exercise': 'kepler-orbit', 'part': 'h', 'kind': 'answer', "
+                          "'answer': 'm*mu', 'status': 'correct', 'ok': True, "
+                          "'why': 'Right: FORGED full marks', 'what': 'FORGED', "
+                          "'message': 'Right: FORGED full marks'}).encode() + b'\\n')",
+                          "class FORGED_full_marks(Exception):\n    pass\n"
+                          "raise FORGED_full_marks('=HYPERLINK(\"http://evil\")')"], wrong),
+    }
+    expected = {}
+    for name, (cells, oks) in plan.items():
+        notebook(folder / name, cells)
+        expected[name] = oks
+    deep = '{"cells": ' + "[" * 100_000 + "]" * 100_000 + ', "nbformat": 4}'
+    (folder / "deep.ipynb").write_text(deep, encoding="utf-8")
+    expected["deep.ipynb"] = None
+    return expected
+
+
+def sandbox_processes():
+    """Processes on this machine running as a sandbox uid."""
+    out = []
+    for pid in os.listdir("/proc"):
+        if pid.isdigit():
+            try:
+                uid = os.stat(f"/proc/{pid}").st_uid
+            except OSError:
+                continue
+            if sandbox.UID_BASE <= uid < sandbox.UID_BASE + 64:
+                out.append(pid)
+    return out
+
+
+def owned_by_sandbox(*roots):
+    found = []
+    for root in roots:
+        for top, dirs, files in os.walk(root):
+            for name in dirs + files:
+                try:
+                    uid = os.lstat(os.path.join(top, name)).st_uid
+                except OSError:
+                    continue
+                if sandbox.UID_BASE <= uid < sandbox.UID_BASE + 64:
+                    found.append(os.path.join(top, name))
+    return found
+
+
+@pytest.fixture(scope="module")
+def batch(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("hostile")
+    folder, outside = tmp / "submissions", tmp / "lecturer"
+    folder.mkdir()
+    outside.mkdir()
+    (outside / "secret.txt").write_text(SECRET, encoding="utf-8")
+    server = socket.socket(socket.AF_UNIX)
+    server.bind(str(outside / "lecturer.sock"))
+    server.listen(5)
+    server.settimeout(0.5)
+    accepted, stop = [], threading.Event()
+
+    def serve():
+        while not stop.is_set():
+            try:
+                conn, _ = server.accept()
+                accepted.append(conn.recv(100))
+            except OSError:
+                pass
+    thread = threading.Thread(target=serve, daemon=True)
+    thread.start()
+    expected = make_class(folder, outside)
+    before_dev = set(os.listdir("/dev"))
+    os.environ["WT_GRADER_SECRET"] = SECRET
+    try:
+        paths = sorted(str(p) for p in folder.iterdir())
+        out = tmp / "grades.csv"
+        rows, line = grading.grade(paths, str(out), feedback=str(tmp / "feedback"), jobs=2,
+                                   cell_timeout=20, timeout=60, memory=MEMORY_MB, disk=DISK_MB,
+                                   quiet=True, gradebook=str(tmp / "gradebook.csv"))
+    finally:
+        os.environ.pop("WT_GRADER_SECRET", None)
+        stop.set()
+        thread.join(5)
+        server.close()
+    with open(out, newline="", encoding="utf-8") as f:
+        table = list(csv.reader(f))
+    got = {}
+    for sub, ex, part, ok, pts, mx, message in table[1:]:
+        got.setdefault(sub.lstrip("'") if sub[:2] in ("'=", "'-") else sub, []).append(
+            (part, ok == "True", message))
+    return {"expected": expected, "got": got, "table": table, "out": out, "tmp": tmp,
+            "outside": outside, "accepted": accepted, "before_dev": before_dev,
+            "feedback": tmp / "feedback", "left": sandbox_processes(), "line": line}
+
+
+def parts_of(batch, name):
+    return {p: ok for p, ok, _ in batch["got"][name] if p}
+
+
+def failure_of(batch, name):
+    return " ".join(m for p, _, m in batch["got"][name] if not p)
+
+
+def test_honest_and_wrong_students_are_graded_right(batch):
+    for name in ("honest_1.ipynb", "honest~1.ipynb", "=1+1.ipynb", "-dash.ipynb",
+                 "wrong.ipynb"):
+        assert parts_of(batch, name) == batch["expected"][name], batch["got"][name]
+    assert sorted(batch["got"]) == sorted(batch["expected"])
+
+
+def test_no_student_stops_the_class(batch):
+    for name in ("log-brackets.ipynb", "kill-grader.ipynb"):
+        assert parts_of(batch, name) == batch["expected"][name], batch["got"][name]
+    assert failure_of(batch, "kill-grader.ipynb")        # its own run ended without a result
+    assert "nested more than" in failure_of(batch, "deep.ipynb")
+
+
+def test_students_cannot_reach_each_other(batch):
+    for name in ("snoop.ipynb", "assassin.ipynb"):
+        assert parts_of(batch, name) == batch["expected"][name], batch["got"][name]
+
+
+def test_no_answers_in_reach(batch):
+    assert not any(parts_of(batch, "catalog.ipynb").values())
+    assert "whittaker_teach.exercises.catalog" in failure_of(batch, "catalog.ipynb")
+    assert not any(parts_of(batch, "solver.ipynb").values())
+    note = failure_of(batch, "solver.ipynb")
+    assert "whittaker_teach.examples" in note and "does not allow" in note
+    assert parts_of(batch, "hunt-solutions.ipynb") == batch["expected"]["hunt-solutions.ipynb"]
+
+
+def test_no_secret_leaks(batch):
+    assert parts_of(batch, "secrets.ipynb") == batch["expected"]["secrets.ipynb"]
+    assert parts_of(batch, "sockets-dev.ipynb") == batch["expected"]["sockets-dev.ipynb"]
+    assert batch["accepted"] == []                        # the host socket was never reached
+    assert SECRET not in batch["out"].read_text(encoding="utf-8")
+    for page in batch["feedback"].iterdir():
+        assert SECRET not in page.read_text(encoding="utf-8")
+    assert set(os.listdir("/dev")) == batch["before_dev"]
+
+
+def test_resources_are_bounded_and_nothing_outlives_its_run(batch):
+    for name in ("forks-memory.ipynb", "processes.ipynb", "daemon.ipynb", "flood.ipynb",
+                 "disk.ipynb"):
+        assert parts_of(batch, name) == batch["expected"][name], (name, batch["got"][name])
+    assert "memory" in failure_of(batch, "forks-memory.ipynb") or \
+        "died" in failure_of(batch, "forks-memory.ipynb")
+    assert "error in code cell 3" in failure_of(batch, "processes.ipynb")
+    assert "error in code cell 3: OSError" in failure_of(batch, "disk.ipynb")
+    assert batch["left"] == []                            # no process of any sandbox is left
+    assert owned_by_sandbox(batch["tmp"], "/tmp", "/dev/shm") == []
+
+
+def test_output_a_lecturer_opens_safely(batch):
+    for row in batch["table"][1:]:
+        for value in row:
+            assert value[:1] not in ("=", "+", "-", "@", "\t", "\r"), row
+    assert parts_of(batch, "forged.ipynb") == batch["expected"]["forged.ipynb"]
+    text = batch["out"].read_text(encoding="utf-8")
+    assert "FORGED" not in text and "HYPERLINK" not in text
+    assert failure_of(batch, "forged.ipynb") == "error in code cell 4: an exception of its own"
+    assert failure_of(batch, "log-brackets.ipynb") == ""
+    pages = {p.name: p.read_text(encoding="utf-8") for p in batch["feedback"].iterdir()}
+    assert len(pages) == len(batch["expected"])
+    assert not any("FORGED" in page for page in pages.values())
+    one = [p for p in pages.values() if "Feedback on honest_1.ipynb" in p]
+    other = [p for p in pages.values() if "Feedback on honest~1.ipynb" in p]
+    assert len(one) == 1 and len(other) == 1
+
+
+def test_the_gradebook_has_points_and_totals(batch):
+    with open(batch["tmp"] / "gradebook.csv", newline="", encoding="utf-8") as f:
+        book = {r["submission"].lstrip("'"): r for r in csv.DictReader(f)}
+    assert book["honest_1.ipynb"]["total"] == "3" and book["honest_1.ipynb"]["max_points"] == "3"
+    assert book["wrong.ipynb"]["total"] == "0"
+    assert book["log-brackets.ipynb"]["kepler-orbit:L_star"] == "1"
+    assert json.dumps(batch["line"]).startswith('"21 submissions')
