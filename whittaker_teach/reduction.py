@@ -270,17 +270,38 @@ class Reduction:
         vanishes at the q'' found."""
         if "acc" not in self._cache:
             qpp = [self._qpp[c] for c in self._nus]
-            eqs = sp.Matrix(self._eqs)
-            M = sp.Matrix([[self._d(e, a) for a in qpp] for e in eqs])
             if len(qpp) > SOLVE_NU_LIMIT:
-                self.system._require_regular(M, "d(1.26)/d(q''_nu)", self._sample)
+                self.system._require_regular(self._q2_matrix(), "d(1.26)/d(q''_nu)",
+                                             self._sample)
                 sol = self._accelerations_from_time()
             else:
+                eqs = sp.Matrix(self._eqs)
+                M = sp.Matrix([[self._d(e, a) for a in qpp] for e in eqs])
                 memo = {}
                 rest = sp.Matrix([zeroed(e, qpp, memo) for e in eqs])
                 sol = self.system._solve(M, rest, "d(1.26)/d(q''_nu)", self._sample)
             self._cache["acc"] = dict(zip(qpp, sol))
         return self._cache["acc"]
+
+    def _q2_matrix(self):
+        """d(1.26)/d(q''), entry (nu, mu): (1.26) is linear in q'', which enters only
+        through d/dq_eps (``_D``) as d f/dq'_mu q''_mu, so the entry is
+        d^2 L*/dq'_nu dq'_mu - sum_beta P_beta d^2 qdot*_beta/dq'_nu dq'_mu: second
+        derivatives that building (1.26) took already (one memo), not a derivative of
+        each whole equation."""
+        Ls, qp = self._Lstar, self._qp
+        rows = []
+        for c in self._nus:
+            row = []
+            for k in self._nus:
+                e = self._d(self._d(Ls, qp[c]), qp[k])
+                for P, qs in zip(self._Pstar, self._qdstar):
+                    inner = self._d(qs, qp[c])
+                    if inner != 0:
+                        e -= P * self._d(inner, qp[k])
+                row.append(e)
+            rows.append(row)
+        return sp.Matrix(rows)
 
     def _accelerations_from_time(self):
         """q''_nu from the accelerations of (1.4) under (1.5) and (1.12), one per q_nu."""

@@ -56,3 +56,14 @@ def test_accelerations_from_time_equal_the_lu_solution(monkeypatch):
     for a in fast:
         assert _equal(fast[a], lu[a], red._sample)
     assert red.verify().ok
+
+
+def test_q2_matrix_is_the_jacobian_of_1_26():
+    """The matrix shown regular for the shortcut is d(1.26)/d(q''), entry by entry."""
+    import sympy as sp
+    S, x1 = _system()
+    red = S.reduce(x1)
+    qpp = [red._qpp[c] for c in red._nus]
+    jac = sp.Matrix([[red._d(e, a) for a in qpp] for e in red._eqs])
+    for a, b in zip(red._q2_matrix(), jac):
+        assert _equal(a, b, red._sample)
