@@ -76,7 +76,7 @@ def main():
     rad = 0.18 + 0.32 * s
     sx, sy = P[0] + rad * np.cos(phi + np.pi), P[1] + rad * np.sin(phi + np.pi)
     ax.plot(sx, sy, color="#b9770e", lw=1.8, zorder=4)
-    ax.text(P[0] - 0.62, P[1] - 0.05, "$k^2$", color="#b9770e", ha="right",
+    ax.text(P[0] - 0.7, P[1] - 0.08, "$k^2$", color="#b9770e", ha="right",
             va="top", fontsize=20)
 
     # the allowed velocity: along the runner
