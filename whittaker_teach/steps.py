@@ -79,6 +79,12 @@ class Step:
         return self.to_unicode()
 
 
+#: cell styles of the check table: the label, residual and verdict never break; the claim
+#: and "how" columns wrap between words (a formula is never broken)
+_TD = {0: ' style="white-space:nowrap"', 1: ' style="min-width:14em"',
+       3: ' style="white-space:nowrap"', 4: ' style="white-space:nowrap"'}
+
+
 class Report(list):
     """The checks of a derivation, re-run: a list of :class:`Check`.
 
@@ -119,8 +125,9 @@ class Report(list):
         return self.to_text()
 
     def _repr_html_(self):
-        """A table (equation, claim, how, largest residual, held) that wraps in a narrow
-        column, folded under the summary line (open when a check did not hold)."""
+        """A table (equation, claim, how, largest residual, held), folded under the summary
+        line (open when a check did not hold); its text wraps between words, and in a
+        column narrower than its formulas it scrolls sideways."""
         from html import escape
 
         from .render import html_maths
@@ -131,13 +138,13 @@ class Report(list):
             res = f"{c.max_residual:.1e}" if c.method in ("numeric", "refutation") else "0"
             cells = [escape(shown_label(c.label)), html_maths(c.claim), escape(how), res,
                      {True: "yes", False: "NO", None: "not verified"}[c.holds]]
-            rows.append("<tr>" + "".join(f"<td>{v}</td>" for v in cells) + "</tr>")
+            rows.append("<tr>" + "".join(f"<td{_TD.get(i, '')}>{v}</td>"
+                                         for i, v in enumerate(cells)) + "</tr>")
         head = "".join(f"<th>{h}</th>" for h in ("eq.", "claim", "how", "residual", "held"))
         # folded under its one-line summary; open when a check did not hold
         return (f'<details class="wt-report"{"" if self.ok else " open"}>'
                 f"<summary>{escape(self.summary())}</summary>"
-                '<table class="wt-report" style="table-layout:auto;width:100%;'
-                'overflow-wrap:anywhere">'
+                '<table class="wt-report" style="table-layout:auto;width:100%">'
                 f"<thead><tr>{head}</tr></thead>"
                 "<tbody>" + "".join(rows) + "</tbody></table></details>")
 

@@ -79,8 +79,11 @@
           && a.clientHeight < window.innerHeight) {
         return `${describe(a)} (overflow-y ${oy}) hides ${Math.round(Math.max(0, top - r.top))} px at the top and ${Math.round(Math.max(0, r.bottom - bottom))} px at the bottom`;
       }
-      // what is visible of it from here on
-      if (ox !== "visible") r = { ...r, left: Math.max(r.left, left), right: Math.min(r.right, right) };
+      // what is visible of it from here on: in a box that scrolls sideways (and reaches
+      // it, checked above) the reader scrolls it into the box's own width; in a box that
+      // clips, only the part inside the box
+      if (ox === "auto" || ox === "scroll") r = { ...r, left: left, right: right };
+      else if (ox !== "visible") r = { ...r, left: Math.max(r.left, left), right: Math.min(r.right, right) };
       if (r.right <= r.left) return `${describe(a)} shows none of it`;
     }
     return null;
