@@ -141,6 +141,13 @@ def _zero_at(point):
     return iszero
 
 
+def _readable(expr) -> str:
+    """``expr`` on one line for an error message, as sympy.physics.mechanics prints it:
+    x for x(t), x' for its time derivative (``vsprint``)."""
+    from sympy.physics.vector.printing import vsprint
+    return vsprint(expr)
+
+
 class ChaplyginSystem:
     """A Chaplygin-type system: L(q, qdot) and qdot_dep = phi(q_sigma, qdot_sigma).
 
@@ -300,8 +307,9 @@ class ChaplyginSystem:
         dep_qd = [self.qd[c] for c in self.dependent_coordinates]
         for s in dep_q:
             if self._L.has(s):
-                raise ModelError(f"L depends on the dependent coordinate {s} (Chaplygin "
-                                 "condition, 1.3: L must be free of q_(eps+beta))")
+                raise ModelError(f"L depends on the dependent coordinate {_readable(s)} "
+                                 "(Chaplygin condition, 1.3: L must be free of the dependent "
+                                 "coordinates q_(ε+β))")
         for c, phi in self._phi.items():
             for s in dep_q:
                 if phi.has(s):
@@ -515,7 +523,8 @@ class ChaplyginSystem:
                                  r, self._sample_time, seed=10)
                 if not chk.holds:
                     raise ModelError(
-                        f"the constraint {_name(c)}dot = {self.constraints[c.diff(self._t)]} is not "
+                        f"the constraint {_name(c)}' = {_readable(self.constraints[c.diff(self._t)])}"
+                        " (a prime: d/dt) is not "
                         "homogeneous of degree one in the independent velocities (1.10): "
                         "there is no energy integral (1.11), so no Whittaker reduction")
                 res.append(chk)

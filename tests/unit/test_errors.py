@@ -198,3 +198,21 @@ def test_large_potential_is_not_expanded():
     assert any(p.exp == 40 for p in red.L_star.atoms(sp.Pow))
     assert red.verify().ok
     assert all(sp.Add.make_args(e).__len__() < 100 for e in red.equations)
+
+
+def test_messages_print_the_model_readably():
+    """Error messages name coordinates as a mechanics user writes them (x, x'), never as
+    raw SymPy (Derivative(x(t), t)) (issue 23, found in chapter 3)."""
+    import sympy as sp
+    from sympy.physics.mechanics import dynamicsymbols
+    t = dynamicsymbols._t
+    x, y = dynamicsymbols("x y")
+    bad = wt.ChaplyginSystem(x.diff(t)**2 / 2 + y.diff(t)**2 / 2, [x, y],
+                             dependent={y.diff(t): x.diff(t)**2})
+    with pytest.raises(ModelError) as err:
+        bad.energy()
+    assert "y' = x'**2" in str(err.value) and "Derivative" not in str(err.value)
+    with pytest.raises(ModelError) as err:
+        wt.ChaplyginSystem(x.diff(t)**2 / 2 + y.diff(t)**2 / 2 - y, [x, y],
+                           dependent={y.diff(t): x.diff(t) * sp.Integer(2)})
+    assert "dependent coordinate y " in str(err.value) and "(t)" not in str(err.value)
