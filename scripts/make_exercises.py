@@ -20,9 +20,18 @@ Each exercise is written once, in ``exercises/src/<id>.py`` (Jupyter's
   ``{exercise}`` box and each solution in a ``{solution}`` dropdown
   (sphinx-exercise's gated syntax, which can hold code cells).
 
-Both are executed with their outputs stored (``PYTHONHASHSEED=0``, no
+and ``exercises/answers/<id>.json``, the exercise's answer data: the
+solution notebook is first run with ``$WHITTAKER_TEACH_COLLECT`` set, so
+that each ``check(id, answer, part=...)`` of the solution records its
+answer as the part's expected one; with the ``# %% exercise`` cell (the
+symbols and their domain, the parts with their points and messages:
+``whittaker_teach.exercises.authoring``) it is written as JSON, and
+``check`` reads it (no edit of the package for a new exercise).
+
+Both notebooks are executed with their outputs stored (``PYTHONHASHSEED=0``, no
 timing metadata: see ``scripts/execute_notebooks.py``).  A notebook whose
-cells did not change is not re-executed unless ``--all`` is given.
+cells did not change, and whose answer data is up to date, is not
+re-executed unless ``--all`` is given.
 
 Cell markers in a source:
 
@@ -32,6 +41,7 @@ Cell markers in a source:
 ``# %% [markdown] student``       markdown of the student notebook only
 ``# %%``                          code, in both notebooks
 ``# %% solution``                 code of the solution only
+``# %% exercise``                 ``EXERCISE = {...}``: what the exercise is (in neither notebook)
 ``# %% tag=nbval-ignore-output``  a cell tag (only for timing outputs)
 
 and inside a code cell, the lines between ``### BEGIN SOLUTION`` and
@@ -51,6 +61,7 @@ ROOT = Path(__file__).resolve().parent.parent
 SRC = ROOT / "exercises" / "src"
 STUDENT_DIR = ROOT / "exercises"
 SOLUTION_DIR = ROOT / "exercises" / "solutions"
+ANSWER_DIR = ROOT / "exercises" / "answers"
 
 HEADER = re.compile(r"^# %%(?P<rest>.*)$")
 KERNELSPEC = {"display_name": "Python 3", "language": "python", "name": "python3"}
@@ -74,7 +85,7 @@ def parse_source(text: str, name: str = "<source>") -> list[dict]:
                 words = words[1:]
             roles = {w for w in words if not w.startswith("tag=")}
             tags = [w[4:] for w in words if w.startswith("tag=")]
-            unknown = roles - {"statement", "solution", "student"}
+            unknown = roles - {"statement", "solution", "student", "exercise"}
             if unknown:
                 raise SourceError(f"{name}:{lineno}: unknown cell marker {sorted(unknown)}")
             current = {"type": kind, "roles": roles, "tags": tags, "lines": []}
@@ -188,6 +199,8 @@ def build(ex_id: str, text: str):
     statements = 0
     for c in cells:
         roles, src, tags = c["roles"], c["source"], c["tags"]
+        if "exercise" in roles:
+            continue                                   # read by spec_of, in no notebook
         if c["type"] == "markdown":
             if "statement" in roles:
                 statements += 1
@@ -227,6 +240,72 @@ def build(ex_id: str, text: str):
     return _nb(student, ex_id), _nb(solution, ex_id)
 
 
+def spec_of(ex_id: str, text: str) -> dict:
+    """The ``EXERCISE`` dict of a source's ``# %% exercise`` cell (read, not run)."""
+    from whittaker_teach.exercises.authoring import read_spec
+    cells = [c for c in parse_source(text, f"{ex_id}.py") if "exercise" in c["roles"]]
+    if len(cells) != 1 or cells[0]["type"] != "code":
+        raise SourceError(f"{ex_id}: exactly one '# %% exercise' code cell is needed, found "
+                          f"{len(cells)}")
+    return read_spec(cells[0]["source"], f"{ex_id}.py")
+
+
+def source_sha(text: str) -> str:
+    import hashlib
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+def answers_target(ex_id: str, answer_dir: Path | None = None) -> Path:
+    return (answer_dir or ANSWER_DIR) / f"{ex_id}.json"
+
+
+def answers_stale(ex_id: str, text: str, answer_dir: Path | None = None) -> bool:
+    import json
+    path = answers_target(ex_id, answer_dir)
+    if not path.exists():
+        return True
+    try:
+        return json.loads(path.read_text(encoding="utf-8")).get("source_sha256") != \
+            source_sha(text)
+    except ValueError:
+        return True
+
+
+def collect_answers(ex_id: str, text: str, solution, answer_dir: Path | None = None) -> Path:
+    """Run the solution notebook collecting its answers; write the answer data (JSON)."""
+    import json
+    import os
+    import tempfile
+    from whittaker_teach.exercises.authoring import COLLECT, make_data
+    spec = spec_of(ex_id, text)
+    sys.path.insert(0, str(ROOT / "scripts"))
+    from execute_notebooks import execute
+    with tempfile.TemporaryDirectory() as tmp:
+        # run where the solution notebook lives (same relative paths), from a copy
+        nb_path = SOLUTION_DIR / f".collect-{ex_id}-{os.getpid()}.ipynb"
+        log = Path(tmp) / "collected.jsonl"
+        nb_path.write_text(nbformat.writes(solution) + "\n", encoding="utf-8")
+        old = os.environ.get(COLLECT)
+        os.environ[COLLECT] = str(log)
+        try:
+            execute(nb_path)
+        finally:
+            nb_path.unlink(missing_ok=True)
+            if old is None:
+                os.environ.pop(COLLECT, None)
+            else:
+                os.environ[COLLECT] = old
+        records = [json.loads(line) for line in log.read_text(encoding="utf-8").splitlines()] \
+            if log.exists() else []
+    data = make_data(ex_id, spec, records, source_sha(text))
+    target = answers_target(ex_id, answer_dir)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    target.write_text(json.dumps(data, indent=1, ensure_ascii=False, sort_keys=True) + "\n",
+                      encoding="utf-8")
+    print(f"answers of {ex_id} -> {target.relative_to(ROOT) if target.is_relative_to(ROOT) else target}")
+    return target
+
+
 def sources(ids=None) -> dict[str, Path]:
     found = {p.stem: p for p in sorted(SRC.glob("*.py"))}
     if ids:
@@ -264,23 +343,32 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--all", action="store_true", help="re-execute every notebook")
     ap.add_argument("--check", action="store_true", help="only report stale notebooks")
     args = ap.parse_args(argv)
-    todo = []
+    todo, collect = [], []
     for ex_id, path in sources(args.ids).items():
-        student, solution = build(ex_id, path.read_text(encoding="utf-8"))
+        text = path.read_text(encoding="utf-8")
+        student, solution = build(ex_id, text)
+        spec_of(ex_id, text)                      # a bad exercise cell stops here, early
+        fresh = answers_stale(ex_id, text)
+        if fresh or args.all:
+            collect.append((ex_id, text, solution))
         for nb, target in zip((student, solution), targets(ex_id)):
-            if args.all or stale(nb, target):
+            if args.all or fresh or stale(nb, target):
                 todo.append((nb, target))
     if args.check:
+        for ex_id, _, _ in collect:
+            print(f"out of date: {answers_target(ex_id).relative_to(ROOT)}")
         for _, target in todo:
             print(f"out of date: {target.relative_to(ROOT)}")
-        if todo:
+        if todo or collect:
             print("run `make exercises` to regenerate them")
-        return 1 if todo else 0
-    if not todo:
+        return 1 if todo or collect else 0
+    if not todo and not collect:
         print("exercise notebooks are up to date")
         return 0
     sys.path.insert(0, str(ROOT / "scripts"))
     from execute_notebooks import execute  # sets PYTHONHASHSEED=0 for the kernels
+    for ex_id, text, solution in collect:
+        collect_answers(ex_id, text, solution)
     for nb, target in todo:
         target.parent.mkdir(parents=True, exist_ok=True)
         target.write_text(nbformat.writes(nb) + "\n", encoding="utf-8")

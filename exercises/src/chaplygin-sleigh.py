@@ -22,6 +22,45 @@
 #    $\tfrac12[\theta''(\theta', \theta) - \theta''(-\theta', \theta)]$. What does it say
 #    about the mirrored path $\theta(-x)$?
 
+# %% exercise
+EXERCISE = {
+    "title": "The Chaplygin sleigh with an offset centre of mass",
+    "equations": "1.16, 1.26",
+    "solvers": False,
+    "symbols": "x xdot+ y ydot theta thetadot thetaprime thetaprimeprime h m+ J+ k+ b+ Jeff+",
+    "domain": {"x": [0.0, 2.0], "xdot": "speed", "theta": "angle", "thetadot": "slope",
+               "ydot": "slope", "thetaprime": "slope", "h": "energy"},
+    "conditions": ["2*h - k^2*theta^2"],
+    "parts": {
+        "L_star": {
+            "what": "L* (1.16) for the offset sleigh, xdot > 0", "points": 1,
+            "variables": "theta thetaprime h m J k b",
+            "sign_note": "the direction of travel is xdot > 0, so take the root with the + sign",
+            "why_not": {"xdot": "put xdot from (1.12)", "thetadot": "use theta'"},
+            "success": "L* is the sledge's (3.7) with J replaced by J + m b^2."},
+        "J_eff": {
+            "what": "the moment of inertia that replaces J in the sledge's L* (3.7)",
+            "points": 1, "variables": "m J b",
+            "success": "J + m b^2: the moment of inertia about the contact point (parallel "
+                       "axes)."},
+        "P_star": {
+            "what": "(dL/d ydot)* in theta', theta and h", "points": 1,
+            "variables": "theta thetaprime h m J k b",
+            "sign_note": "the direction of travel is xdot > 0, so take the root with the + sign",
+            "why_not": {"xdot": "put xdot from (1.12)", "thetadot": "use theta'",
+                        "ydot": "use the constraint"},
+            "success": "(dL/d ydot)* carries the offset b: the constraint term of (1.26) is "
+                       "where the sleigh differs from a sledge with J + m b^2."},
+        "odd_part": {
+            "what": "the part of theta'' odd in theta': (theta''(theta') - theta''(-theta'))/2",
+            "points": 2, "variables": "theta thetaprime h m J k b",
+            "success": "The odd part is proportional to b: theta' -> -theta' is the same as "
+                       "b -> -b. The sledge's mirrored path theta(-x) is again a path; the "
+                       "sleigh's is the path of a sleigh with its centre of mass behind the "
+                       "knife edge."},
+    },
+}
+
 # %%
 from whittaker_teach.notebook import setup; setup()
 

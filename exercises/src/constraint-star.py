@@ -22,6 +22,40 @@
 #
 # Answer with SymPy expressions in the symbols defined below (or strings).
 
+# %% exercise
+EXERCISE = {
+    "title": "The reduced constraint of the sledge",
+    "equations": "1.22, 1.23, 1.26, 3.8",
+    "solvers": False,
+    "symbols": "x xdot+ y ydot theta thetadot thetaprime thetaprimeprime h m+ J+ k+",
+    "domain": {"x": [0.0, 2.0], "xdot": "speed", "theta": "angle", "thetadot": "slope",
+               "ydot": "slope", "thetaprime": "slope", "h": "energy"},
+    "conditions": ["2*h - k^2*theta^2"],
+    "parts": {
+        "omega": {
+            "what": "omega_y (1.22): the constraint with (1.5) substituted", "points": 1,
+            "variables": "xdot theta thetaprime",
+            "why_not": {"thetadot": "use (1.5): thetadot = xdot theta'"},
+            "success": "omega = xdot tan(theta): it does not contain theta' at all."},
+        "ydot_star": {
+            "what": "ydot* (1.23) = d omega/d xdot", "points": 1,
+            "variables": "theta thetaprime",
+            "why_not": {"xdot": "ydot* = d omega/d xdot is free of xdot (1.23)"},
+            "success": "ydot* = tan(theta) (3.8): the slope dy/dx of the path."},
+        "bracket": {
+            "what": "the bracket of (1.26): d/dx(d ydot*/d theta') - d ydot*/d theta",
+            "points": 1, "variables": "theta thetaprime thetaprimeprime",
+            "success": "The bracket is -(1 + tan^2(theta)) = -1/cos^2(theta)."},
+        "P_star": {
+            "what": "(dL/d ydot)* of (1.26): m ydot in theta', theta and h", "points": 2,
+            "variables": "theta thetaprime h m J k",
+            "sign_note": "the direction of travel is xdot > 0, so take the root with the + sign",
+            "why_not": {"xdot": "put xdot from (1.12)", "ydot": "use the constraint (3.2)"},
+            "success": "(dL/d ydot)* = m tan(theta) sqrt(2h - k^2 theta^2)/sqrt(m (1 + "
+                       "tan^2(theta)) + J theta'^2)."},
+    },
+}
+
 # %%
 from whittaker_teach.notebook import setup; setup()
 

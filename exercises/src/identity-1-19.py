@@ -26,6 +26,30 @@
 #
 # Then compare with $\dfrac{1}{\dot x}\dfrac{\partial\Omega}{\partial\theta'}$: that is (1.19).
 
+# %% exercise
+EXERCISE = {
+    "title": "The identity (1.19)",
+    "equations": "1.14, 1.17, 1.19",
+    "solvers": False,
+    "symbols": "x xdot+ theta thetaprime h m+ J+ b+ k+",
+    "domain": {"x": [0.0, 2.0], "xdot": "speed", "theta": "turn", "thetaprime": "slope",
+               "h": "energy"},
+    "parts": {
+        "dxdot_dthetaprime": {
+            "what": "d xdot/d theta' solved from (1.14)", "points": 1,
+            "variables": "xdot theta thetaprime m J b k",
+            "why_not": {"h": "keep xdot as a symbol: it stands for qdot_eps(q', q, h) of (1.12)"},
+            "success": "From (1.14): d xdot/d theta' = -xdot J theta'/(m + J theta'^2); "
+                       "b drops out."},
+        "dLstar_dthetaprime": {
+            "what": "dL*/d theta' from (1.17), with (1.14) substituted", "points": 2,
+            "variables": "xdot theta thetaprime m J b k",
+            "why_not": {"h": "keep xdot as a symbol: it stands for qdot_eps(q', q, h) of (1.12)"},
+            "success": "dL*/d theta' = J xdot theta' + b cos(theta) = (1/xdot) dOmega/d theta': "
+                       "that is (1.19)."},
+    },
+}
+
 # %%
 from whittaker_teach.notebook import setup; setup()
 

@@ -25,6 +25,37 @@
 # Answer with SymPy expressions in the symbols defined below (or strings; `r'`
 # stands for $r'$).
 
+# %% exercise
+EXERCISE = {
+    "title": "The Kepler orbit with the polar angle as time",
+    "equations": "1.16, 1.27",
+    "solvers": False,
+    "symbols": "r+ rprime rprimeprime theta h m+ mu+ p+ e",
+    "domain": {"r": [0.5, 3.0], "rprime": "slope", "rprimeprime": [-1.0, 1.0], "theta": "turn",
+               "h": [-1.0, 3.0], "e": [0.0, 3.0]},
+    "conditions": ["h + m*mu/r"],
+    "parts": {
+        "L_star": {
+            "what": "L* (1.16) for the Kepler problem with theta in place of t", "points": 1,
+            "variables": "r rprime h m mu",
+            "sign_note": "theta increases along the orbit (thetadot > 0): take the + root",
+            "why_not": {"theta": "L does not depend on theta"},
+            "success": "L* = sqrt(2 h + 2 m mu/r) sqrt(m (r^2 + r'^2)) (1.16)."},
+        "r_pp": {
+            "what": "r'' solved from Whittaker's equation (1.27)", "points": 1,
+            "variables": "r rprime h m mu",
+            "why_not": {"rprimeprime": "solve the equation for r''"},
+            "success": "r'' from (1.27)."},
+        "h": {
+            "what": "the energy h for which the conic r = p/(1 + e cos(theta)) solves (1.27)",
+            "points": 2, "variables": "m mu p e",
+            "why_not": {"theta": "h is a constant", "r": "h is a constant of the orbit",
+                        "rprime": "h is a constant of the orbit"},
+            "success": "h = -m mu (1 - e^2)/(2 p), for every e >= 0: negative for an ellipse "
+                       "(e < 1), zero for a parabola (e = 1), positive for a hyperbola (e > 1)."},
+    },
+}
+
 # %%
 from whittaker_teach.notebook import setup; setup()
 

@@ -22,6 +22,27 @@
 # Then check that it agrees with the left-hand side of (1.26) (here (1.27)),
 # $\dfrac{d}{d\theta}\dfrac{\partial L^{\ast}}{\partial r'} - \dfrac{\partial L^{\ast}}{\partial r}$.
 
+# %% exercise
+EXERCISE = {
+    "title": "The Nielsen form",
+    "equations": "2.1, 2.4, 1.26",
+    "solvers": False,
+    "symbols": "r+ rprime rprimeprime theta h m+ mu+",
+    "domain": {"r": [0.5, 3.0], "rprime": "slope", "rprimeprime": [-1.0, 1.0], "theta": "turn",
+               "h": [-1.0, 3.0]},
+    "conditions": ["h + m*mu/r"],
+    "parts": {
+        "total_derivative": {
+            "what": "dL*/dtheta (2.1), with r'' in it", "points": 1,
+            "variables": "r rprime rprimeprime h m mu",
+            "success": "(2.1): dL*/dtheta = dL*/dr' r'' + dL*/dr r' (+ dL*/dtheta = 0 here)."},
+        "nielsen": {
+            "what": "the left-hand side of (2.4): d/dr'(dL*/dtheta) - 2 dL*/dr", "points": 2,
+            "variables": "r rprime rprimeprime h m mu",
+            "success": "(2.4) for the Kepler problem; it equals the left-hand side of (1.26)."},
+    },
+}
+
 # %%
 from whittaker_teach.notebook import setup; setup()
 

@@ -31,6 +31,39 @@
 # Answer with SymPy expressions in the symbols defined below (or strings; `psi'`
 # stands for $\psi'$).
 
+# %% exercise
+EXERCISE = {
+    "title": "Omega and the energy integral for the rolling disk",
+    "equations": "1.5, 1.6, 1.12, 1.13",
+    "solvers": False,
+    "symbols": "theta thetadot+ psi psiprime psidot h m+ R+ A+ C+ k+",
+    "domain": {"theta": "turn", "thetadot": "speed", "psi": "turn", "psiprime": "slope",
+               "psidot": "slope", "h": "energy"},
+    "conditions": ["2*h - k^2*psi^2"],
+    "parts": {
+        "Omega": {
+            "what": "Omega (1.6): L~ with psidot = thetadot psi'", "points": 1,
+            "variables": "thetadot psi psiprime m R A C k",
+            "why_not": {"psidot": "use (1.5): psidot = thetadot psi'",
+                        "h": "Omega is L~, not the energy"},
+            "success": "Omega = thetadot^2 (A + m R^2 + C psi'^2)/2 - k^2 psi^2/2 (1.6)."},
+        "energy": {
+            "what": "the left-hand side of (1.13), thetadot dOmega/dthetadot - Omega",
+            "points": 1, "variables": "thetadot psi psiprime m R A C k",
+            "why_not": {"psidot": "use (1.5): psidot = thetadot psi'",
+                        "h": "give the left-hand side of (1.13); its value is h"},
+            "success": "The energy (1.13): kinetic plus potential, written with psi'."},
+        "thetadot": {
+            "form": "sqrt(2*h - k^2*psi^2)/sqrt(A + m*R^2 + C*psiprime^2)",
+            "what": "thetadot (1.12): (1.13) solved for thetadot > 0", "points": 1,
+            "variables": "psi psiprime h m R A C k",
+            "sign_note": "the disk rolls forward, thetadot > 0: take the + root",
+            "why_not": {"thetadot": "solve (1.13) for thetadot",
+                        "psidot": "use (1.5): psidot = thetadot psi'"},
+            "success": "thetadot = sqrt(2h - k^2 psi^2)/sqrt(A + m R^2 + C psi'^2) (1.12)."},
+    },
+}
+
 # %%
 from whittaker_teach.notebook import setup; setup()
 

@@ -23,7 +23,43 @@
 # 3. `path`: the path $y(x)$ of this projectile (its energy is $h = \tfrac12 m v_0^2$).
 #
 # Answer with SymPy expressions in the symbols defined below (or strings such
-# as `"x*tan(alpha)"`; `y'` stands for $y'$).
+# as `"x*tan(alpha)"`; `y'` stands for $y'$). Gravity is the symbol `g_0`: in a
+# string write `g_0`, `g0` or `g₀` (a plain `g` is not gravity here).
+
+# %% exercise
+EXERCISE = {
+    "title": "The path of a projectile",
+    "equations": "1.5, 1.12, 1.16, 1.27",
+    "solvers": False,
+    "symbols": "x y yprime yprimeprime h m+ g_0+ v0+ alpha",
+    "domain": {"x": [0.0, 3.0], "y": [-1.0, 1.0], "yprime": "slope", "yprimeprime": [-1.0, 1.0],
+               "h": "energy", "alpha": [0.001, 1.5707]},
+    "conditions": ["h - m*g_0*y"],
+    "parts": {
+        "L_star": {
+            "form": "sqrt(2*(h - m*g_0*y))*sqrt(m*(1 + yprime^2))",
+            "what": "L* (1.16) for the projectile with x in place of t", "points": 1,
+            "variables": "y yprime h m g_0",
+            "sign_note": "the direction of travel is xdot > 0, so take the root with the + sign",
+            "why_not": {"x": "L does not depend on x", "v0": "L* is written with the energy h",
+                        "alpha": "L* is written with the energy h"},
+            "success": "L* = sqrt(2(h - m g_0 y)) sqrt(m (1 + y'^2)), the root for xdot > 0 "
+                       "(1.16)."},
+        "y_pp": {
+            "what": "y'' solved from Whittaker's equation (1.27)", "points": 1,
+            "variables": "y yprime h m g_0",
+            "why_not": {"yprimeprime": "solve the equation for y''"},
+            "success": "y'' from (1.27): the same for either direction of travel."},
+        "path": {
+            "what": "the path y(x) of the projectile launched from the origin with speed v0 "
+                    "at angle alpha", "points": 2,
+            "variables": "x g_0 v0 alpha",
+            "why_not": {"h": "use h = m v0^2/2", "m": "the path does not depend on the mass",
+                        "y": "y(x) is the answer", "yprime": "use y'(0) = tan(alpha)"},
+            "success": "The parabola y = x tan(alpha) - g_0 x^2/(2 v0^2 cos^2(alpha)): it solves "
+                       "(1.27) with h = m v0^2/2, y(0) = 0, y'(0) = tan(alpha)."},
+    },
+}
 
 # %%
 from whittaker_teach.notebook import setup; setup()

@@ -25,6 +25,41 @@
 # Answer with SymPy expressions in the symbols defined below (or with strings
 # such as `"sqrt(2*h - k^2*theta^2)"`; `theta'` stands for $\theta'$).
 
+# %% exercise
+EXERCISE = {
+    "title": "The sledge's reduced Lagrangian",
+    "equations": "3.5, 3.6, 3.7",
+    "solvers": False,
+    "symbols": "x xdot+ y ydot theta thetadot thetaprime thetaprimeprime h m+ J+ k+",
+    "domain": {"x": [0.0, 2.0], "xdot": "speed", "theta": "angle", "thetadot": "slope",
+               "ydot": "slope", "thetaprime": "slope", "h": "energy"},
+    "conditions": ["2*h - k^2*theta^2"],
+    "parts": {
+        "Omega": {
+            "what": "Omega (3.6): L~ (3.3) with thetadot = xdot theta'", "points": 1,
+            "why_not": {"thetadot": "use (1.5): thetadot = xdot theta'", "ydot": "use (3.2)",
+                        "h": "Omega is L~, not the energy"},
+            "success": "Omega = xdot^2 (m (1 + tan^2 theta) + J theta'^2)/2 - k^2 theta^2/2 "
+                       "(3.6)."},
+        "xdot": {
+            "form": "sqrt(2*h - k^2*theta^2)/sqrt(m*(1 + tan(theta)^2) + J*thetaprime^2)",
+            "what": "xdot (3.5): the root of (1.13) with xdot > 0", "points": 1,
+            "sign_note": "the direction of travel is xdot > 0, so take the root with the + sign",
+            "why_not": {"xdot": "solve (1.13) for xdot", "thetadot": "use theta'"},
+            "wrong": [["sqrt(2*h - k^2*theta^2)/sqrt(m*(1 + tan(theta)^2) + J*thetadot^2)",
+                       "this is (3.5) as the OCR prints it, with J thetadot^2"]],
+            "success": "xdot = sqrt(2h - k^2 theta^2)/sqrt(m (1 + tan^2 theta) + J theta'^2) "
+                       "(3.5)."},
+        "L_star": {
+            "form": "sqrt(2*h - k^2*theta^2)*sqrt(m*(1 + tan(theta)^2) + J*thetaprime^2)",
+            "what": "L* (3.7) = dOmega/d xdot with xdot from (3.5)", "points": 2,
+            "sign_note": "the direction of travel is xdot > 0, so take the root with the + sign",
+            "why_not": {"xdot": "put xdot from (3.5)", "thetadot": "use theta'"},
+            "success": "L* = sqrt(2h - k^2 theta^2) sqrt(m (1 + tan^2 theta) + J theta'^2) "
+                       "(3.7), the + sign for xdot > 0."},
+    },
+}
+
 # %%
 from whittaker_teach.notebook import setup; setup()
 

@@ -25,6 +25,35 @@
 #    as (3.10) does, and give the term free of $\theta'$ and $\theta''$. Which printed
 #    coefficient is wrong?
 
+# %% exercise
+EXERCISE = {
+    "title": "The sledge's reduced equation and a misprint",
+    "equations": "1.26, 3.9, 3.10",
+    "solvers": False,
+    "symbols": "x xdot+ y ydot theta thetadot thetaprime thetaprimeprime h m+ J+ k+",
+    "domain": {"x": [0.0, 2.0], "xdot": "speed", "theta": "angle", "thetadot": "slope",
+               "ydot": "slope", "thetaprime": "slope", "h": "energy"},
+    "conditions": ["2*h - k^2*theta^2"],
+    "parts": {
+        "theta_pp": {
+            "what": "theta'' solved from (1.26) for the sledge", "points": 2,
+            "variables": "theta thetaprime h m J k",
+            "why_not": {"thetaprimeprime": "solve (1.26) for theta''"},
+            "success": "theta'' from (1.26); multiplied by J (2h - k^2 theta^2) it gives (3.10)."},
+        "last_term": {
+            "what": "the term of (3.10) free of theta' and theta''", "points": 1,
+            "variables": "theta h m J k",
+            "wrong": [["m*k*theta*(1 + tan(theta)^2)",
+                       "that is the coefficient as the paper prints it, m k theta "
+                       "(1 + tan^2 theta): compare it with what (1.26) gives you"]],
+            "why_not": {"thetaprime": "take the term free of theta'",
+                        "thetaprimeprime": "take the term free of theta''"},
+            "success": "The last term of (3.10) is m k^2 theta (1 + tan^2 theta): the printed "
+                       "m k theta (1 + tan^2 theta) lacks a factor k (dimensions: k^2 theta is a "
+                       "torque)."},
+    },
+}
+
 # %%
 from whittaker_teach.notebook import setup; setup()
 

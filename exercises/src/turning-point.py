@@ -22,6 +22,57 @@
 #    point? Answer with one of `"ChartError"`, `"NaN"`, `"continues"`, `"switches"`.
 # 4. `x_turn`: the value of $x$ (6 digits) where the sledge turns back, for those numbers.
 
+# %% exercise
+EXERCISE = {
+    "title": "Where x stops being a coordinate",
+    "equations": "1.5, 1.12, 3.12, 3.15",
+    "solvers": True,
+    "symbols": "x xdot+ theta thetaprime t h C+ a+ m+ J+ k+",
+    "domain": {"x": [0.0, 2.0], "xdot": "speed", "theta": "angle", "thetaprime": "slope",
+               "t": [0.0, 3.0], "h": "energy", "a": [1.5709, 6.0]},
+    "definitions": {"omega": "k/sqrt(J)"},
+    "parts": {
+        "xdot": {
+            "what": "xdot along a motion of the sledge, in C and theta (from (3.5) and (3.11))",
+            "points": 1, "variables": "C theta",
+            "sign_note": "the direction of travel is xdot > 0, so take the root with the + sign",
+            "why_not": {"thetaprime": "put theta' from the first integral (3.11)",
+                        "h": "h drops out on the first integral"},
+            "success": "xdot = C cos(theta) (3.12): x stops being usable where cos(theta) = 0."},
+        "t_turn": {
+            "what": "the first time t > 0 at which x stops being usable, for theta = "
+                    "a sin(k t/sqrt(J)) with a > pi/2", "points": 1, "variables": "a J k",
+            "why_not": {"C": "the turning point is where theta = pi/2, whatever C",
+                        "theta": "give t in terms of a, J and k"},
+            "success": "t = sqrt(J)/k asin(pi/(2a)): theta reaches pi/2 there, so xdot = "
+                       "C cos theta vanishes and x turns back."},
+        "numerics": {
+            "what": "what red.simulate does (default options) when the path reaches the "
+                    "turning point", "points": 1,
+            "choices": {
+                "ChartError": [["raises ChartError", "chart error", "raises", "error",
+                                "whittaker_teach.ChartError"],
+                               "The reduced model watches qdot_x and stops with a ChartError "
+                               "that says where x turns back; on_turning_point='switch' "
+                               "continues across it, in time."],
+                "NaN": [["nan", "returns nan", "nans"],
+                        "No: run red.simulate across the turning point and read what happens."],
+                "continues": [["continues past it", "wrong values", "silently continues",
+                               "nothing"],
+                              "No: run red.simulate across the turning point and read what "
+                              "happens."],
+                "switches": [["switch", "switches chart", "switch to time"],
+                             "Only when asked: that is on_turning_point='switch'; with the "
+                             "default options, run red.simulate across the turning point and "
+                             "read what happens."]}},
+        "x_turn": {
+            "what": "x where the sledge turns back, for m = J = k = C = 1, a = 2 (to 6 digits)",
+            "points": 2, "rtol": 1e-06,
+            "success": "x where xdot vanishes: the ChartError reports it, and the exact "
+                       "solution sledge_exact agrees."},
+    },
+}
+
 # %%
 from whittaker_teach.notebook import setup; setup()
 

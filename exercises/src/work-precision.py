@@ -12,10 +12,14 @@
 # $\dot\theta = a\,k/\sqrt J$, $\dot x = C$ with $a = 0.5$, $C = 1$, over $0 \le t \le 20$.
 # The exact motion is known, $\theta = a\sin t$ (3.15) with (3.12), (3.13):
 # `wt.examples.sledge_exact`.
-# **Assumptions:** the error of a run is the largest of $|x - x_\text{exact}|$,
-# $|y - y_\text{exact}|$, $|\theta - \theta_\text{exact}|$ at $t = 20$; its cost is
-# `nfev`, the number of evaluations of the right-hand side; the tolerances are
-# `rtol` $= 10^{-4}, 10^{-5}, \dots, 10^{-12}$ with `atol = rtol` (the default).
+# **Assumptions:** the set-up of chapter 7: the error of a run is *relative*, the
+# largest at $t = 20$ of $|x - x_\text{exact}|/s_x$, $|y - y_\text{exact}|/s_y$,
+# $|\theta - \theta_\text{exact}|/s_\theta$, each component divided by its scale
+# along the exact motion ($s_\theta = a$, $s_x$ and $s_y$ the largest $|x|$ and
+# $|y|$ over $0 \le t \le 20$); its cost is `nfev`, the number of evaluations of the
+# right-hand side; the tolerances are `rtol` $= 10^{-4}, 10^{-5}, \dots, 10^{-12}$
+# with `atol` $= 10^{-20}$ (tiny, so that the error control is relative in every
+# component: not `atol = rtol`).
 #
 # 1. `nfev`: run `DOP853` and `RK45` on every tolerance (the function `run` below does
 #    one run). What is the fewest `nfev` with which DOP853 reaches an error $\le 10^{-8}$?
@@ -23,6 +27,42 @@
 #    $10^{-8}$: `"DOP853"` or `"RK45"`?
 # 3. `why`: why is it cheaper there? One of `"order"`, `"implicit"`, `"symplectic"`,
 #    `"tolerance"`.
+
+# %% exercise
+EXERCISE = {
+    "title": "Error against cost for two integrators",
+    "equations": "1.4, 3.15",
+    "solvers": True,
+    "symbols": "",
+    "parts": {
+        "nfev": {
+            "what": "the fewest right-hand-side evaluations (nfev) with which DOP853 reaches "
+                    "a relative error <= 1e-08 on the grid of tolerances", "points": 2,
+            "success": "That is the cheapest run of DOP853 below the target."},
+        "method": {
+            "what": "the integrator you would use for an error of 1e-08", "points": 1,
+            "choices": {
+                "DOP853": [["dop853"], "DOP853 reaches 1e-08 with fewer evaluations than "
+                                       "RK45: the leftmost point below the target line."],
+                "RK45": [["rk45"], "Compare the costs (nfev) at which each reaches an error "
+                                   "of 1e-08: read them off your table or plot."]}},
+        "why": {
+            "what": "why that integrator is cheaper at this accuracy", "points": 1,
+            "choices": {
+                "order": [["higher order", "its order is higher", "8th order", "eighth order",
+                           "order 8"],
+                          "An error of order 8 falls much faster with the step size than one "
+                          "of order 5, so at tight tolerances DOP853 takes far fewer steps, "
+                          "although each costs more evaluations."],
+                "implicit": [["it is implicit", "implicit method"],
+                             "Both are explicit Runge-Kutta methods."],
+                "symplectic": [["it is symplectic", "structure preserving"],
+                               "Neither is symplectic; the sledge is not even Hamiltonian."],
+                "tolerance": [["smaller tolerance", "tighter tolerance", "rtol"],
+                              "Both were run on the same tolerances; look at the error each "
+                              "achieves for its cost."]}},
+    },
+}
 
 # %%
 from whittaker_teach.notebook import setup; setup()
@@ -39,14 +79,19 @@ sledge = wt.examples.sledge()
 q0, qdot0 = exact.initial()
 T = 20.0
 RTOLS = [10.0**-n for n in range(4, 13)]
+ATOL = 1e-20                 # tiny: the error control is relative in every component
+# each component's scale along the exact motion (chapter 7)
+grid = [exact(T*i/400) for i in range(401)]
+scale = {"theta": 0.5, "x": max(abs(g["x"]) for g in grid),
+         "y": max(abs(g["y"]) for g in grid)}
 
 
 def run(method, rtol):
-    """One run: (nfev, error at t = T)."""
+    """One run: (nfev, relative error at t = T)."""
     traj = sledge.simulate(q0, qdot0, (0.0, T), params, method=method,
-                           rtol=rtol)
+                           rtol=rtol, atol=ATOL)
     end = exact(T)
-    error = max(abs(float(traj.q[c][-1]) - end[c])
+    error = max(abs(float(traj.q[c][-1]) - end[c])/scale[c]
                 for c in ("x", "y", "theta"))
     return traj.nfev, error
 
@@ -136,9 +181,9 @@ why
 # RK45's by about $2^5$: on the diagram DOP853's line is much steeper, so below
 # about $10^{-6}$ it needs far fewer evaluations for the same error, although
 # each of its steps costs 12 evaluations against 6; at loose tolerances the two
-# are close. Note also that `rtol` is not the error: here the
-# error at $t = 20$ is some ten times `rtol` for DOP853, so the tolerance must
-# be chosen from a measurement like this one.
+# are close. Note also that `rtol` is not the error (compare the two columns of
+# the table above): the error at $t = 20$ is the accumulation of every step's,
+# so the tolerance must be chosen from a measurement like this one.
 
 # %%
 check("work-precision", why, part="why")

@@ -645,3 +645,82 @@ def test_importing_the_package_stays_light():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout.split()
     assert out == ["False", "True"]
+
+
+# ---------------------------------------------------------------- answers as data (issue 25)
+def _solution_answers():
+    """(exercise, part, the solution's answer as stored) for every part of every exercise."""
+    out = []
+    for ex in exercises():
+        for name, p in EXERCISES[ex].parts.items():
+            out.append((ex, name, p.answer_key if p.is_choice else p.expected))
+    return out
+
+
+@pytest.mark.parametrize("ex,part,answer", _solution_answers(),
+                         ids=lambda a: a if isinstance(a, str) else "")
+def test_every_answer_as_text_gets_the_verdict_of_the_object(ex, part, answer):
+    """The grader checks recorded text: str(expr), sstr(expr), repr(number), a class name."""
+    f = check(ex, answer, part=part)
+    assert f.ok, f.message
+    if isinstance(answer, str):
+        texts = [answer, answer.lower(), f"wt.{answer}"]
+    elif answer.free_symbols:
+        texts = [str(answer), sp.sstr(answer)]
+    else:
+        texts = [str(answer), repr(float(answer)), sp.sstr(answer)]
+    for text in texts:
+        g = check(ex, text, part=part)
+        assert g.ok == f.ok and g.status == f.status, (text, g.message)
+    if not isinstance(answer, str):           # a wrong answer as text: wrong as the object
+        wrong = -answer if answer.free_symbols else answer * 1.01
+        assert check(ex, str(wrong), part=part).ok == check(ex, wrong, part=part).ok is False
+
+
+def test_every_part_has_points_and_every_exercise_says_if_solvers_are_allowed():
+    from whittaker_teach.exercises import answers_path, load
+    for ex in exercises():
+        e = load(ex)
+        assert isinstance(e.solvers, bool)
+        assert answers_path(ex).name == f"{ex}.json"
+        assert answers_path(ex).parent.name == "answers"
+        for p in e.parts.values():
+            assert isinstance(p.points, (int, float)) and p.points > 0
+    assert load("turning-point").solvers and not load("sledge-L-star").solvers
+    assert load("sledge-L-star").parts["L_star"].points == 2
+
+
+def test_stored_answers_agree_with_the_library():
+    """The answers taken from the solutions are the library's results (no answer in code)."""
+    from whittaker_teach.exercises.compare import equal
+    from whittaker_teach.exercises.specs import plain
+    checks = {
+        "sledge-L-star": (wt.examples.sledge().reduce("x", +1),
+                          {"Omega": "Omega", "xdot": "velocity", "L_star": "L_star"}),
+        "projectile-path": (wt.examples.projectile().reduce("x", +1), {"L_star": "L_star"}),
+        "kepler-orbit": (wt.examples.kepler().reduce("theta", +1), {"L_star": "L_star"}),
+        "omega-and-energy": (wt.examples.rolling_disk().reduce("theta", +1),
+                             {"Omega": "Omega", "thetadot": "velocity"}),
+        "chaplygin-sleigh": (wt.examples.offset_sleigh().reduce("x", +1), {"L_star": "L_star"}),
+        "nielsen-form": (wt.examples.kepler().reduce("theta", +1), {}),
+    }
+    for ex, (red, attrs) in checks.items():
+        names, dom, ps = EXERCISES[ex].build()
+        for part, attr in attrs.items():
+            lib = plain(getattr(red, attr), names)
+            assert equal(ps[part].expected, lib, dom, 7), (ex, part)
+        if ex == "nielsen-form":
+            lib = plain(red.nielsen_equations[0], names)
+            assert equal(ps["nielsen"].expected, lib, dom, 7)
+    for ex, part, red in [("projectile-path", "y_pp", checks["projectile-path"][0]),
+                          ("kepler-orbit", "r_pp", checks["kepler-orbit"][0]),
+                          ("sledge-reduced-equation", "theta_pp", checks["sledge-L-star"][0])]:
+        names, dom, ps = EXERCISES[ex].build()
+        (acc,) = red.accelerations().values()
+        assert equal(ps[part].expected, plain(acc, names), dom, 7), (ex, part)
+
+
+def test_no_expected_answer_is_package_code():
+    from pathlib import Path
+    text = (Path(wt.__file__).parent / "exercises" / "catalog.py").read_text(encoding="utf-8")
+    assert "reduce(" not in text and "Part(" not in text and "examples" not in text

@@ -121,3 +121,18 @@ def test_placeholders_replace_solutions():
     assert sources[2:5] == ["import math\na = math.pi\na", "print(a)", "Because."]
     assert sources[5].startswith("```{solution-end}")
     assert sources[6] == "check('demo', a)"
+
+
+@pytest.mark.parametrize("ex_id", sorted(SOURCES))
+def test_answer_data_is_up_to_date(ex_id):
+    """exercises/answers/<id>.json was made from the current source (its sha256)."""
+    import json
+    text = SOURCES[ex_id].read_text(encoding="utf-8")
+    make_exercises.spec_of(ex_id, text)
+    path = make_exercises.answers_target(ex_id)
+    assert path.exists(), f"{path} is missing: run `make exercises`"
+    assert not make_exercises.answers_stale(ex_id, text), \
+        f"{path} is out of date with its source: run `make exercises`"
+    data = json.loads(path.read_text(encoding="utf-8"))
+    assert data["id"] == ex_id and {p["name"] for p in data["parts"]} == \
+        set(make_exercises.spec_of(ex_id, text)["parts"])

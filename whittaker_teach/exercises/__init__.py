@@ -25,8 +25,14 @@ Every check is bounded (:mod:`.limits`): it answers within 2 s whatever it
 is given, if need be with "this answer is too expensive to check; simplify
 it".
 
-The expected answers are derived from the library on the first check of
-each exercise (about a second), not on import.
+The expected answers are data, not code: ``make exercises`` runs each
+exercise's solution (``exercises/src/<id>.py``) and stores the answers in
+``exercises/answers/<id>.json``; :func:`answers_path` says where an
+exercise's data is, :func:`load` gives the exercise (its parts, their
+``points``, and ``solvers``: whether a graded notebook may use the
+library's solvers).  A string is read as the object it prints: ``str(expr)``
+of any SymPy answer, the name of an exception class, ``repr`` of a number
+get the same verdict as the objects.
 """
 
 from __future__ import annotations
@@ -34,12 +40,30 @@ from __future__ import annotations
 from .feedback import Feedback
 from .limits import TooExpensive
 
-__all__ = ["check", "exercises", "parts", "Feedback"]
+__all__ = ["check", "exercises", "parts", "load", "answers_path", "answers_dirs", "Feedback"]
 
 
 def _catalog():
     from .catalog import EXERCISES
     return EXERCISES
+
+
+def load(exercise_id):
+    """The exercise (``.title``, ``.solvers``, ``.parts`` = {name: Part with ``.points``})."""
+    from .catalog import load as _load
+    return _load(exercise_id)
+
+
+def answers_path(exercise_id):
+    """The file holding ``exercise_id``'s expected answers (a Path), or None."""
+    from .answers import answers_path as _path
+    return _path(exercise_id)
+
+
+def answers_dirs():
+    """Every folder where answer data is looked for (keep them out of a graded kernel)."""
+    from .answers import answers_dirs as _dirs
+    return _dirs()
 
 
 def exercises():
@@ -61,6 +85,11 @@ def check(exercise_id, answer, part=None):
     answered yet".
     """
     import os
+    if os.environ.get("WHITTAKER_TEACH_COLLECT"):
+        # `make exercises` runs the solution: its answers become the expected ones
+        from .authoring import record_expected
+        record_expected(exercise_id, part, answer)
+        return Feedback(True, "recorded as the expected answer", str(exercise_id)[:40], part)
     if os.environ.get("WHITTAKER_TEACH_CHECK_LOG"):
         # graded: record the answer only; the grader checks it in its own process
         feedback = Feedback(False, "recorded for grading", str(exercise_id)[:40],
@@ -100,8 +129,9 @@ def _check(exercise_id, answer, part):
     from .specs import check_part
     cat = _catalog()
     if not isinstance(exercise_id, str) or exercise_id not in cat:
-        return Feedback(False, f"There is no exercise {str(exercise_id)[:40]!r}; the exercises "
-                        f"are {', '.join(cat)}", "", None, "invalid")
+        return Feedback(False, f"There is no exercise {str(exercise_id)[:40]!r} (no answer data "
+                        f"for it: run `make exercises`); the exercises are {', '.join(cat)}",
+                        "", None, "invalid")
     ex = cat[exercise_id]
     names = list(ex.parts)
     if part is None:

@@ -1,9 +1,9 @@
 """What an exercise asks: :class:`Exercise` and :class:`Part`, and the checking of one part.
 
 An exercise has an id, a title, the paper's equations it involves, and a
-builder that derives its parts (the expected answers, from the library
-where the library computes them).  The builder runs on the first check of
-that exercise only, and its result is kept.
+builder that reads its parts from the exercise's answer data
+(:mod:`.authoring`, :mod:`.answers`).  The builder runs on the first check
+of that exercise only, and its result is kept.
 
 A :class:`Part` is either an expression (``expected``, compared with
 :func:`~whittaker_teach.exercises.compare.compare` on the exercise's
@@ -39,8 +39,8 @@ class Names:
         self.symbols = {s.name: s for s in symbols}
         # the coordinates: a name with a derivative among the symbols (theta: thetaprime)
         self.functions = set(functions) if functions is not None else {
-            n for n in self.symbols if any(n + d in self.symbols
-                                           for d in ("prime", "dot"))}
+            n for n in self.symbols if any(n + d in self.symbols for d in ("prime", "dot"))
+            and not n.endswith(("prime", "dot"))}
         self.definitions = dict(definitions or {})
         self.alias = {}
         for name, s in self.symbols.items():
@@ -108,6 +108,7 @@ class Part:
     choices: dict = field(default_factory=dict)
     answer_key: str = ""
     rtol: float | None = None
+    points: float = 1
 
     @property
     def is_choice(self):
@@ -124,12 +125,17 @@ class Part:
 
 @dataclass
 class Exercise:
-    """An exercise: id, title, equations of the paper, and a builder of its parts."""
+    """An exercise: id, title, equations of the paper, and a builder of its parts.
+
+    solvers: may a graded notebook of it use the library's solvers (the
+    grader's sandbox offers only ``check`` and ``setup`` when False).
+    """
 
     id: str
     title: str
     equations: str
     builder: object
+    solvers: bool = False
     _built: tuple | None = None
 
     def build(self):

@@ -1,0 +1,168 @@
+"""Where an exercise's answer data lives, and how it is read back safely.
+
+``make exercises`` runs each exercise's solution and writes, beside its
+source, ``exercises/answers/<id>.json``: the statement's symbols with their
+assumptions, the domain, the parts (with their points, hints and messages)
+and each part's expected answer.  This module finds that file and reads it;
+nothing in it is package code.
+
+Expressions are stored as ``sympy.srepr`` text and read back by
+:func:`from_srepr`, a restricted reader: Python's :mod:`ast` parses the
+text and only the SymPy constructors of :data:`CONSTRUCTORS` with literal
+arguments are built (no ``eval``, no pickle, no attribute access).
+
+>>> import sympy as sp
+>>> m = sp.Symbol("m", positive=True)
+>>> e = sp.sqrt(2 * m) * sp.sin(sp.Symbol("theta")) + sp.Float("0.25") + sp.pi
+>>> from_srepr(sp.srepr(e)) == e and from_srepr(sp.srepr(e)).has(m)
+True
+>>> from_srepr("__import__('os')")
+Traceback (most recent call last):
+...
+ValueError: answer data: __import__ is not a SymPy constructor allowed here
+
+Search order of :func:`answers_dirs` (the first folder holding
+``<id>.json`` wins): the folder named by the environment variable
+``WHITTAKER_TEACH_ANSWERS``; ``exercises/answers`` of the source tree
+(editable install: the repository); ``answers/`` in the current folder and
+in its parent (the in-browser site ships them next to the exercise
+notebooks).
+"""
+
+from __future__ import annotations
+
+import ast
+import json
+import os
+from pathlib import Path
+
+import sympy as sp
+
+__all__ = ["answers_dirs", "answers_path", "read_data", "from_srepr", "to_srepr",
+           "CONSTRUCTORS", "FORMAT"]
+
+FORMAT = 1
+MAX_DATA_CHARS = 2_000_000
+MAX_NODES = 200_000
+
+CONSTRUCTORS = {
+    "Symbol": sp.Symbol, "Dummy": sp.Symbol, "Integer": sp.Integer, "Rational": sp.Rational,
+    "Float": sp.Float, "Add": sp.Add, "Mul": sp.Mul, "Pow": sp.Pow, "Tuple": sp.Tuple,
+    "sin": sp.sin, "cos": sp.cos, "tan": sp.tan, "sec": sp.sec, "csc": sp.csc, "cot": sp.cot,
+    "asin": sp.asin, "acos": sp.acos, "atan": sp.atan, "atan2": sp.atan2, "sinh": sp.sinh,
+    "cosh": sp.cosh, "tanh": sp.tanh, "exp": sp.exp, "log": sp.log, "Abs": sp.Abs,
+    "sign": sp.sign,
+}
+NAMES = {"pi": sp.pi, "E": sp.E, "I": sp.I, "S": None}
+_ASSUMPTIONS = {"positive", "negative", "real", "nonnegative", "nonpositive", "nonzero",
+                "integer", "commutative", "finite", "zero"}
+
+
+def answers_dirs():
+    """Every folder that may hold answer data, in search order (existing or not)."""
+    out = []
+    env = os.environ.get("WHITTAKER_TEACH_ANSWERS")
+    if env:
+        out.append(Path(env))
+    out.append(Path(__file__).resolve().parents[2] / "exercises" / "answers")
+    try:
+        cwd = Path.cwd()
+        out += [cwd / "answers", cwd.parent / "answers"]
+    except OSError:                        # the current folder was removed
+        pass
+    return out
+
+
+def answers_path(exercise_id):
+    """The JSON file of ``exercise_id``'s answer data, or None where there is none."""
+    if not isinstance(exercise_id, str) or not exercise_id.replace("-", "").replace(
+            "_", "").isalnum() or len(exercise_id) > 100:
+        return None
+    for d in answers_dirs():
+        p = d / f"{exercise_id}.json"
+        if p.is_file():
+            return p
+    return None
+
+
+def available():
+    """{exercise id: path} of every answer file found (first folder wins)."""
+    found = {}
+    for d in answers_dirs():
+        if d.is_dir():
+            for p in sorted(d.glob("*.json")):
+                found.setdefault(p.stem, p)
+    return found
+
+
+def read_data(path):
+    """The answer data of one file (a dict), checked for its format."""
+    text = Path(path).read_text(encoding="utf-8")
+    if len(text) > MAX_DATA_CHARS:
+        raise ValueError(f"answer data {path}: larger than {MAX_DATA_CHARS} characters")
+    data = json.loads(text)
+    if not isinstance(data, dict) or data.get("format") != FORMAT:
+        raise ValueError(f"answer data {path}: not format {FORMAT}; run `make exercises`")
+    return data
+
+
+def to_srepr(expr):
+    """The stored form of an expression."""
+    return sp.srepr(expr)
+
+
+def from_srepr(text):
+    """An expression from its ``srepr`` text, building only :data:`CONSTRUCTORS`."""
+    if not isinstance(text, str) or len(text) > MAX_DATA_CHARS:
+        raise ValueError("answer data: an expression must be a string")
+    tree = ast.parse(text, mode="eval")
+    count = [0]
+
+    def build(node):
+        count[0] += 1
+        if count[0] > MAX_NODES:
+            raise ValueError("answer data: expression too large")
+        if isinstance(node, ast.Constant) and isinstance(node.value, (int, float, str)) \
+                and not isinstance(node.value, bool):
+            return node.value
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub) \
+                and isinstance(node.operand, ast.Constant):
+            return -node.operand.value
+        if isinstance(node, ast.Name) and NAMES.get(node.id) is not None:
+            return NAMES[node.id]
+        if isinstance(node, ast.Tuple):
+            return tuple(build(e) for e in node.elts)
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
+            name = node.func.id
+            if name not in CONSTRUCTORS:
+                raise ValueError(f"answer data: {name} is not a SymPy constructor allowed here")
+            args = [build(a) for a in node.args]
+            kwargs = {}
+            for kw in node.keywords:
+                if kw.arg in _ASSUMPTIONS and isinstance(kw.value, ast.Constant) \
+                        and isinstance(kw.value.value, bool):
+                    kwargs[kw.arg] = kw.value.value
+                elif kw.arg == "precision" and name == "Float" and \
+                        isinstance(kw.value, ast.Constant) and isinstance(kw.value.value, int) \
+                        and 1 <= kw.value.value <= 400:
+                    kwargs[kw.arg] = kw.value.value
+                else:
+                    raise ValueError(f"answer data: keyword {kw.arg} not allowed in {name}")
+            if name in ("Symbol", "Dummy") and not (len(args) == 1 and isinstance(args[0], str)):
+                raise ValueError("answer data: Symbol takes a name")
+            if name in ("Integer", "Rational") and not all(isinstance(a, int) and
+                                                          abs(a) < 10**60 for a in args):
+                raise ValueError("answer data: Integer/Rational take small integers")
+            if name == "Float" and not (len(args) == 1 and isinstance(args[0], str)):
+                raise ValueError("answer data: Float takes its digits as a string")
+            if name == "Float":
+                return sp.Float(args[0], **({"precision": kwargs["precision"]}
+                                            if "precision" in kwargs else {}))
+            if name in ("Symbol", "Dummy"):
+                return sp.Symbol(args[0], **kwargs)
+            if kwargs:
+                raise ValueError(f"answer data: {name} takes no keywords")
+            return CONSTRUCTORS[name](*args)
+        raise ValueError("answer data: not a SymPy expression in srepr form")
+
+    return build(tree.body)
