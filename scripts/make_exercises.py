@@ -282,6 +282,7 @@ def collect_answers(ex_id: str, text: str, solution, answer_dir: Path | None = N
     from execute_notebooks import execute
     with tempfile.TemporaryDirectory() as tmp:
         # run where the solution notebook lives (same relative paths), from a copy
+        SOLUTION_DIR.mkdir(parents=True, exist_ok=True)
         nb_path = SOLUTION_DIR / f".collect-{ex_id}-{os.getpid()}.ipynb"
         log = Path(tmp) / "collected.jsonl"
         nb_path.write_text(nbformat.writes(solution) + "\n", encoding="utf-8")
