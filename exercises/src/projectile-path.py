@@ -35,6 +35,7 @@ EXERCISE = {
     "domain": {"x": [0.0, 3.0], "y": [-1.0, 1.0], "yprime": "slope", "yprimeprime": [-1.0, 1.0],
                "h": "energy", "alpha": [0.001, 1.5707]},
     "conditions": ["h - m*g_0*y"],
+    "notes": {"g": "gravity is g_0 (also g0 or g₀); the paper's g counts the constraints"},
     "parts": {
         "L_star": {
             "form": "sqrt(2*(h - m*g_0*y))*sqrt(m*(1 + yprime^2))",

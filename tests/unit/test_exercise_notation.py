@@ -121,16 +121,22 @@ def test_unicode_conversion_is_linear_and_safe():
 
 
 # ---------------------------------------------------------------- property test
-SLEDGE = {n: sp.Symbol(n, positive=True) if n in ("m", "J", "k", "xdot") else sp.Symbol(n)
-          for n in "theta thetaprime thetadot xdot h m J k".split()}
-UNICODE_NAMES = {"theta": "θ", "thetaprime": "θ′", "thetadot": "θ̇", "xdot": "ẋ"}
+GREEK_LETTERS = {"theta": "θ", "psi": "ψ", "mu": "μ", "alpha": "α"}
 SUP = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
+
+
+def unicode_name(name):
+    """theta -> θ, thetaprime -> θ′, thetadot -> θ̇, xdot -> ẋ, rprimeprime -> r″, g_0 -> g₀."""
+    for suffix, mark in (("primeprime", "″"), ("prime", "′"), ("dot", "\u0307")):
+        if name.endswith(suffix) and len(name) > len(suffix):
+            return unicode_name(name[:-len(suffix)]) + mark
+    return GREEK_LETTERS.get(name, name.replace("_0", "₀"))
 
 
 def unicode_str(e):
     """The expression as the rendered statements write it (−, ·, ², √, θ′, θ̇, ẋ, π)."""
     if e.is_Symbol:
-        return UNICODE_NAMES.get(e.name, e.name)
+        return unicode_name(e.name)
     if e is sp.pi:
         return "π"
     if e is sp.I:
@@ -154,26 +160,46 @@ def unicode_str(e):
     raise ValueError(e)
 
 
-leaves = st.one_of(st.sampled_from(list(SLEDGE.values())),
-                   st.integers(-5, 5).map(sp.Integer), st.just(sp.pi),
-                   st.tuples(st.integers(-5, 5), st.integers(1, 5)).map(lambda t: sp.Rational(*t)))
-expressions = st.recursive(leaves, lambda inner: st.one_of(
-    st.tuples(inner, inner).map(lambda t: t[0] + t[1]),
-    st.tuples(inner, inner).map(lambda t: t[0] * t[1]),
-    st.tuples(inner, st.integers(-3, 4)).map(lambda t: t[0] ** t[1] if t[0] != 0 else t[0]),
-    inner.map(sp.sqrt), inner.map(sp.sin), inner.map(sp.cos), inner.map(sp.tan)),
-    max_leaves=8)
+def expressions(symbols):
+    leaves = st.one_of(st.sampled_from(symbols), st.integers(-5, 5).map(sp.Integer),
+                       st.just(sp.pi), st.tuples(st.integers(-5, 5), st.integers(1, 5))
+                       .map(lambda t: sp.Rational(*t)))
+    return st.recursive(leaves, lambda inner: st.one_of(
+        st.tuples(inner, inner).map(lambda t: t[0] + t[1]),
+        st.tuples(inner, inner).map(lambda t: t[0] * t[1]),
+        st.tuples(inner, st.integers(-3, 4)).map(lambda t: t[0] ** t[1] if t[0] != 0 else t[0]),
+        inner.map(sp.sqrt), inner.map(sp.sin), inner.map(sp.cos), inner.map(sp.tan)),
+        max_leaves=8)
 
 
-@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(expressions)
-def test_ascii_and_unicode_prints_read_the_same(expr):
+def test_unicode_names_are_those_of_the_statements():
+    assert [unicode_name(n) for n in ("thetaprime", "thetadot", "xdot", "rprimeprime", "g_0",
+                                      "psiprime", "mu")] == \
+        ["θ′", "θ\u0307", "x\u0307", "r″", "g₀", "ψ′", "μ"]
+
+
+@pytest.mark.parametrize("ex_id", ["sledge-L-star", "kepler-orbit", "omega-and-energy",
+                                   "projectile-path", "chaplygin-sleigh"])
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data())
+def test_ascii_and_unicode_prints_read_the_same(ex_id, data):
+    """Random expressions in the exercise's symbols: sstr, str and the statements' Unicode
+    are read as the same expression."""
     from whittaker_teach.exercises.catalog import EXERCISES
-    names = EXERCISES["sledge-L-star"].build()[0]
+    names = EXERCISES[ex_id].build()[0]
+    expr = data.draw(expressions(sorted(names.symbols.values(), key=str)))
     if expr.has(sp.zoo, sp.nan, sp.oo) or len(sp.sstr(expr)) > 1500:
         return
     ctx = names.context()
-    ascii_ = names.resolve(read_answer(sp.sstr(expr), context=ctx))
+    for text in (sp.sstr(expr), str(expr)):
+        assert names.resolve(read_answer(text, context=ctx)) == expr, text
     uni = names.resolve(read_answer(unicode_str(expr), context=ctx))
-    assert ascii_ == expr, (sp.sstr(expr), ascii_)
-    assert sp.expand(uni - expr) == 0 or uni == expr, (unicode_str(expr), uni)
+    assert uni == expr or sp.expand(uni - expr) == 0, (unicode_str(expr), uni)
+
+
+def test_gravity_is_g0_and_a_plain_g_is_explained():
+    for text in ("sqrt(2*(h - m*g_0*y))*sqrt(m*(1 + y'^2))", "√(2·(h − m·g₀·y))·√(m·(1 + y′²))",
+                 "sqrt(2*(h - m*g0*y))*sqrt(m*(1 + yprime^2))"):
+        assert check("projectile-path", text, part="L_star").ok, text
+    f = check("projectile-path", "sqrt(2*(h - m*g*y))*sqrt(m*(1 + y'^2))", part="L_star")
+    assert not f.ok and "gravity is g_0" in f.message

@@ -25,6 +25,9 @@ writes everything to ``exercises/answers/<id>.json`` (:mod:`.answers`), from
 which :func:`exercise_from_data` builds the :class:`~.specs.Exercise` that
 ``check`` uses.
 
+``notes`` ({name: what to write instead}) is said when an answer uses a name
+that is not a symbol of the exercise (``{"g": "gravity is g_0"}``).
+
 A domain entry is a range ``[low, high]`` or one of the names of
 :data:`PRESETS`; a symbol without an entry is sampled on ``positive`` when
 declared positive (``m+``), else on ``[-1, 1]``.  A part is an expression
@@ -66,7 +69,7 @@ PRESETS = {
 PART_KEYS = {"what", "points", "variables", "why_not", "sign_note", "success", "wrong", "rtol",
              "choices", "form"}
 SPEC_KEYS = {"title", "equations", "solvers", "symbols", "functions", "domain", "conditions",
-             "definitions", "parts"}
+             "definitions", "notes", "parts"}
 COLLECT = "WHITTAKER_TEACH_COLLECT"
 
 
@@ -249,6 +252,7 @@ def make_data(ex_id, spec, collected, source_sha256=""):
             "symbols": [[s.name, bool(s.is_positive)] for s in symbols],
             "functions": sorted(names.functions),
             "definitions": {k: to_srepr(v) for k, v in definitions.items()},
+            "notes": {str(k): str(v) for k, v in spec.get("notes", {}).items()},
             "domain": domain,
             "conditions": [to_srepr(c) for c in conditions],
             "parts": parts}
@@ -287,7 +291,7 @@ def exercise_from_data(data):
 
     def builder():
         definitions = {k: read(v) for k, v in data.get("definitions", {}).items()}
-        names = Names(symbols, data.get("functions"), definitions)
+        names = Names(symbols, data.get("functions"), definitions, data.get("notes"))
         dom = Domain({by_name[k]: tuple(v) for k, v in data["domain"].items()},
                      conditions=tuple(read(c) for c in data.get("conditions", [])))
         parts = []

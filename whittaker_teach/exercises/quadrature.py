@@ -27,6 +27,15 @@ from .parsing import MAX_SUM_TERMS, AnswerError
 __all__ = ["numeric_value", "QUAD_DEGREE"]
 
 QUAD_DEGREE = 6          # mpmath.quad's maxdegree: at most ~ 3 * 2**7 evaluations per interval
+MAX_WORK = 200_000       # evaluations x nodes of the integrand or summand (no timer in Pyodide)
+QUAD_EVALUATIONS = 400   # about what QUAD_DEGREE allows
+
+
+def _bounded_work(f, evaluations):
+    nodes = sum(1 for _ in zip(range(MAX_WORK + 1), sp.preorder_traversal(f)))
+    if nodes * evaluations > MAX_WORK:
+        raise AnswerError("the integral or sum of your answer is too costly to evaluate "
+                          "(a long integrand, or many terms): give its value")
 
 
 def _number(e):
@@ -50,6 +59,7 @@ def _integral(node):
     lo, hi = _number(a), _number(b)
     if mpmath.im(lo) or mpmath.im(hi) or not (mpmath.isfinite(lo) and mpmath.isfinite(hi)):
         raise AnswerError("the limits of an integral must be finite real numbers")
+    _bounded_work(node.function, QUAD_EVALUATIONS)
     fn = _Fn(node.function, [s])
 
     def f(t):
@@ -80,6 +90,7 @@ def _sum(node):
                           "give its value")
     if node.function.free_symbols - {n}:
         raise AnswerError("a sum in a numeric answer may contain no symbol but its index")
+    _bounded_work(node.function, int(b - a + 1))
     fn = _Fn(node.function, [n])
     total = mpmath.mpf(0)
     with mpmath.workdps(20):

@@ -35,8 +35,9 @@ class Names:
     Greek letters may be written as such (``θ``).
     """
 
-    def __init__(self, symbols, functions=None, definitions=None):
+    def __init__(self, symbols, functions=None, definitions=None, notes=None):
         self.symbols = {s.name: s for s in symbols}
+        self.notes = dict(notes or {})      # {a name that is not a symbol: what to write}
         # the coordinates: a name with a derivative among the symbols (theta: thetaprime)
         self.functions = set(functions) if functions is not None else {
             n for n in self.symbols if any(n + d in self.symbols for d in ("prime", "dot"))
@@ -77,8 +78,9 @@ class Names:
                 continue
             canon = self.alias.get(s.name)
             if canon is None:
+                note = self.notes.get(s.name)
                 raise AnswerError(f"your answer uses the symbol {s.name[:30]}, which is not a "
-                                  "symbol of this exercise")
+                                  "symbol of this exercise" + (f" ({note})" if note else ""))
             if canon is not s:
                 sub[s] = canon
         return expr.xreplace(sub) if sub else expr
