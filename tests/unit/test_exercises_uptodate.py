@@ -136,3 +136,21 @@ def test_answer_data_is_up_to_date(ex_id):
     data = json.loads(path.read_text(encoding="utf-8"))
     assert data["id"] == ex_id and {p["name"] for p in data["parts"]} == \
         set(make_exercises.spec_of(ex_id, text)["parts"])
+
+
+@pytest.mark.parametrize("ex_id", sorted(SOURCES))
+def test_no_exercise_needs_a_private_function(ex_id):
+    """A student uses only the public library: no obj._name, no `from ... import _name`."""
+    import ast
+    text = SOURCES[ex_id].read_text(encoding="utf-8")
+    code = "\n".join(c["source"] for c in make_exercises.parse_source(text, ex_id)
+                     if c["type"] == "code")
+    code = "\n".join(line for line in code.splitlines() if not line.lstrip().startswith("###"))
+    for node in ast.walk(ast.parse(code)):
+        if isinstance(node, ast.Attribute):
+            assert not (node.attr.startswith("_") and not node.attr.startswith("__")), \
+                f"{ex_id}: uses .{node.attr}"
+        if isinstance(node, ast.ImportFrom):
+            assert not any(a.name.startswith("_") for a in node.names), ex_id
+            assert not any(part.startswith("_") for part in (node.module or "").split(".")), \
+                f"{ex_id}: imports from {node.module}"
