@@ -26,7 +26,7 @@ Search order of :func:`answers_dirs` (the first folder holding
 ``WHITTAKER_TEACH_ANSWERS``; ``exercises/answers`` of the source tree
 (editable install: the repository); ``answers/`` in the current folder and
 in its parent (the in-browser site ships them next to the exercise
-notebooks).
+notebooks), and ``../exercises/answers`` (a chapter of the in-browser site).
 """
 
 from __future__ import annotations
@@ -67,7 +67,7 @@ def answers_dirs():
     out.append(Path(__file__).resolve().parents[2] / "exercises" / "answers")
     try:
         cwd = Path.cwd()
-        out += [cwd / "answers", cwd.parent / "answers"]
+        out += [cwd / "answers", cwd.parent / "answers", cwd.parent / "exercises" / "answers"]
     except OSError:                        # the current folder was removed
         pass
     return out
