@@ -203,3 +203,27 @@ def test_gravity_is_g0_and_a_plain_g_is_explained():
         assert check("projectile-path", text, part="L_star").ok, text
     f = check("projectile-path", "sqrt(2*(h - m*g*y))*sqrt(m*(1 + y'^2))", part="L_star")
     assert not f.ok and "gravity is g_0" in f.message
+
+
+def test_an_unevaluated_integral_object_is_evaluated_in_a_numeric_part():
+    s = sp.Symbol("s")
+    value = sp.integrate(sp.cos(2 * sp.sin(s)), (s, 0, sp.asin(sp.pi / 4)))
+    assert isinstance(value, sp.Integral)          # what sp.integrate returns here
+    assert check("turning-point", value, part="x_turn").ok
+    assert not check("turning-point", 2 * value, part="x_turn").ok
+    f = check("turning-point", sp.Sum(1 / s**2, (s, 1, 10**9)), part="x_turn")
+    assert not f.ok and "terms" in f.message
+
+
+def test_random_typing_never_reaches_an_internal_error():
+    import random
+    rng = random.Random(25)
+    alphabet = list("θ̇′’²³⁻¹√·−×πẋ₀_ ()^*+-/.,'0123456789") + [
+        "sin", "sec^2", "theta", "xdot", "J", "m", "k", "h", "Integral(", "Sum(", "(s, 0, 1)",
+        "ω", "1e308", "0.0", "**", "sqrt", "theta(x)", "m(", "Derivative(", "diff(", ")"]
+    for _ in range(400):
+        text = "".join(rng.choice(alphabet) for _ in range(rng.randint(1, 25)))
+        for ex, part in (("sledge-L-star", "L_star"), ("turning-point", "x_turn"),
+                         ("turning-point", "numerics")):
+            f = check(ex, text, part=part)
+            assert "could not check" not in f.message, (text, f.message)
