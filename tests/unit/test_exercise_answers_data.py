@@ -77,3 +77,27 @@ def test_the_in_browser_site_gets_the_data_next_to_the_exercise_notebooks(tmp_pa
     f = check_part(ex, ex.parts["L_star"],
                    "sqrt(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + J*theta'^2)")
     assert f.ok, f.message
+
+
+def test_the_builder_stops_on_a_solution_that_does_not_fit_its_exercise_cell():
+    from whittaker_teach.exercises.authoring import make_data
+    spec = read_spec("EXERCISE = {'title': 't', 'symbols': 'x a+', 'parts': {"
+                     "'f': {'what': 'f', 'form': 'a*x^2'}, "
+                     "'c': {'what': 'c', 'choices': {'yes': [['y'], 'ok'], 'no': [[], 'no']}}}}")
+    with pytest.raises(SpecError, match="never calls check"):
+        make_data("t", spec, [{"exercise": "t", "part": "c", "text": "yes"}])
+    with pytest.raises(SpecError, match="not one of its choices"):
+        make_data("t", spec, [{"exercise": "t", "part": "f", "text": "a*x^2"},
+                              {"exercise": "t", "part": "c", "text": "maybe"}])
+    with pytest.raises(SpecError, match="is not equal to the solution's answer"):
+        make_data("t", spec, [{"exercise": "t", "part": "f", "text": "a*x^3"},
+                              {"exercise": "t", "part": "c", "text": "y"}])
+    with pytest.raises(SpecError, match="not in EXERCISE\\['symbols'\\]"):
+        make_data("t", spec, [{"exercise": "t", "part": "f", "text": "b*x^2"},
+                              {"exercise": "t", "part": "c", "text": "y"}])
+    data = make_data("t", spec, [{"exercise": "t", "part": "f", "text": "x^2*a"},
+                                 {"exercise": "t", "part": "c", "text": "Y"}])
+    ex = exercise_from_data(json.loads(json.dumps(data)))
+    assert check_part(ex, ex.parts["f"], "a*x*x").ok and not check_part(ex, ex.parts["f"], "x^2").ok
+    assert check_part(ex, ex.parts["c"], "yes").ok and not check_part(ex, ex.parts["c"], "no").ok
+    assert ex.parts["f"].variables == (sp.Symbol("a", positive=True), sp.Symbol("x"))
