@@ -36,6 +36,7 @@ EXERCISE = {
     "conditions": ["h + m*mu/r"],
     "parts": {
         "L_star": {
+            "form": "sqrt(2*h + 2*m*mu/r)*sqrt(m*(r^2 + rprime^2))",
             "what": "L* (1.16) for the Kepler problem with theta in place of t", "points": 1,
             "variables": "r rprime h m mu",
             "sign_note": "theta increases along the orbit (thetadot > 0): take the + root",

@@ -36,11 +36,14 @@ EXERCISE = {
     "conditions": ["2*h - k^2*theta^2"],
     "parts": {
         "theta_pp": {
+            "form": "(J*thetaprime^2*(2*h*tan(theta) - k^2*theta^2*tan(theta) - k^2*theta) "
+                    "- k^2*m*theta*(1 + tan(theta)^2))/(J*(2*h - k^2*theta^2))",
             "what": "theta'' solved from (1.26) for the sledge", "points": 2,
             "variables": "theta thetaprime h m J k",
             "why_not": {"thetaprimeprime": "solve (1.26) for theta''"},
             "success": "theta'' from (1.26); multiplied by J (2h - k^2 theta^2) it gives (3.10)."},
         "last_term": {
+            "form": "m*k^2*theta*(1 + tan(theta)^2)",
             "what": "the term of (3.10) free of theta' and theta''", "points": 1,
             "variables": "theta h m J k",
             "wrong": [["m*k*theta*(1 + tan(theta)^2)",
