@@ -41,6 +41,10 @@ RIGHT = [
     ("projectile-path", "path", "x*tan(alpha) - g_0*x^2/(2*v0^2*cos(alpha)^2)"),
     ("projectile-path", "path", "x*tan(alpha) - g0*x^2/(2*v0^2*cos(alpha)^2)"),
     ("kepler-orbit", "h", "−m·μ·(1 − e²)/(2p)".replace("2p", "2*p")),
+    ("projectile-path", "L_star", "sqrt(2*(h - m*g_0*y))*sqrt(m*(1 + yprime²))"),  # name²
+    ("omega-and-energy", "Omega", "θ̇²·(A + m·R² + C·ψ′²)/2 − k²·ψ²/2"),          # dotted θ
+    ("sledge-L-star", "L_star", "sqrt(2*h - k^2*sin^2(theta)/sin^2(theta)*theta^2)"
+                                "*sqrt(m*sec^2 theta + J*theta'**2)"),              # sin^2 x
 ]
 
 # the three wrong answers the class trial saw accepted, and other name(...) products
