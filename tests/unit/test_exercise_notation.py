@@ -231,3 +231,13 @@ def test_random_typing_never_reaches_an_internal_error():
                          ("turning-point", "numerics")):
             f = check(ex, text, part=part)
             assert "could not check" not in f.message, (text, f.message)
+
+
+def test_messages_point_into_the_text_as_typed():
+    f = check("chaplygin-sleigh", "J*θ′²)", part="J_eff")
+    assert "position 6" in f.message                 # not a position in the rewritten text
+    f = check("chaplygin-sleigh", "π·(J", part="J_eff")
+    assert "position 3" in f.message
+    for text in ("√", "√+J", "J + √"):
+        f = check("chaplygin-sleigh", text, part="J_eff")
+        assert f.status == "invalid" and "√ must be followed" in f.message, text

@@ -241,6 +241,11 @@ def parse_string(text, max_length=MAX_LENGTH, context=None):
     if len(text) > max_length:
         raise AnswerError(f"the answer is {len(text)} characters long; a formula of at most "
                           f"{max_length} characters is expected")
+    if not text.isascii():
+        _balance(text)        # positions in the text as typed, before it is rewritten
+        if re.search(r"√(?![\s(\w.])|√\s*$", text):
+            raise AnswerError("√ must be followed by a bracket, a name or a number, as in "
+                              "√(2*h) or √J")
     text = to_ascii(text, None if context is None else context.functions)
     _check_string(text, 4 * max_length, context)
     text = _primes(text)
