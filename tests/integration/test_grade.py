@@ -241,3 +241,21 @@ def test_without_the_sandbox_grade_refuses_unless_unsafe(tmp_path, monkeypatch, 
     args.unsafe = True
     assert grading.main(args) == 0
     assert "UNSAFE" in capsys.readouterr().out
+
+
+@pytest.mark.slow
+def test_every_solution_notebook_gets_full_marks_in_the_sandbox(tmp_path):
+    """The exercises' own solutions, graded as students' notebooks: every part right (so each
+    exercise's solvers flag allows what its student notebook needs; a solution that confirms
+    a hand derivation with the library where solvers are not allowed gets a note row)."""
+    from whittaker_teach.exercises import sandbox
+    if sandbox.available():
+        pytest.skip(sandbox.available())
+    root = Path(__file__).resolve().parents[2] / "exercises" / "solutions"
+    paths = sorted(str(p) for p in root.glob("*.ipynb"))
+    assert paths
+    rows, line = grading.grade(paths, str(tmp_path / "g.csv"), jobs=2, quiet=True,
+                               cell_timeout=120, timeout=600)
+    bad = [(r.submission, r.part, r.message) for r in rows if r.part and not r.ok]
+    assert not bad, bad
+    assert {r.submission for r in rows} == {Path(p).name for p in paths}

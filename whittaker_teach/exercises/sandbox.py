@@ -50,7 +50,8 @@ import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["available", "Limits", "Cgroups", "PackageCopy", "command", "environment",
+__all__ = ["available", "Limits", "Cgroups", "cgroup_limits", "PackageCopy", "command",
+           "environment",
            "UID_BASE", "SCRATCH"]
 
 UID_BASE = 61000
@@ -222,14 +223,30 @@ class Cgroups:
                     except OSError:
                         pass
                 time.sleep(0.05)
-            _rmdir(d)
+            for _ in range(40):               # a group whose last task is still exiting: busy
+                if _rmdir(d):
+                    break
+                time.sleep(0.05)
+
+
+def cgroup_limits():
+    """Which limits cgroups enforce over all of a submission's processes here: a subset of
+    ['memory', 'pids'] (empty: per-process limits only)."""
+    group = Cgroups.make(f"wt-grade-probe-{os.getpid()}", Limits())
+    try:
+        return group.enforced
+    finally:
+        group.close()
 
 
 def _rmdir(d):
     try:
         d.rmdir()
+    except FileNotFoundError:
+        return True
     except OSError:
-        pass
+        return False
+    return True
 
 
 # ---------------------------------------------------------------- the package it sees
@@ -311,6 +328,8 @@ class PackageCopy:
             shutil.copy(self.source / "exercises" / "recorder.py", ex / "__init__.py")
             shutil.copy(self.source / "exercises" / "recorder.py", ex / "recorder.py")
             shutil.copy(self.source / "exercises" / "grade.py", ex / "grade.py")
+            import compileall           # the sandbox writes no bytecode: compile it once here
+            compileall.compile_dir(str(root), quiet=2, workers=1)
             for d, dirs, files in os.walk(root):
                 os.chmod(d, 0o755)
                 for f in files:
