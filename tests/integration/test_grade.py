@@ -259,3 +259,48 @@ def test_every_solution_notebook_gets_full_marks_in_the_sandbox(tmp_path):
     bad = [(r.submission, r.part, r.message) for r in rows if r.part and not r.ok]
     assert not bad, bad
     assert {r.submission for r in rows} == {Path(p).name for p in paths}
+
+
+def test_an_interrupted_batch_keeps_its_rows_and_leaves_nothing_running(tmp_path,
+                                                                         package_path):
+    """Ctrl-C while notebooks run: the rows graded so far stay in the CSV, no new run starts
+    and the running ones are killed with every process they started."""
+    import signal
+    import time
+
+    from whittaker_teach.exercises import sandbox
+    if sandbox.available():
+        pytest.skip(sandbox.available())
+    (tmp_path / "essay.ipynb").write_text("not a notebook", encoding="utf-8")
+    for i in range(4):
+        _notebook(tmp_path / f"loop{i}.ipynb", ["import subprocess, time\n"
+                                                "subprocess.Popen(['sleep', '600'])\n"
+                                                "while True:\n    time.sleep(1)"])
+    out = tmp_path / "g.csv"
+    proc = subprocess.Popen([sys.executable, "-m", "whittaker_teach", "grade", "--out",
+                             str(out), "--cell-timeout", "60", *sorted(
+                                 str(p) for p in tmp_path.glob("*.ipynb"))],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            env={**os.environ, "PYTHONPATH": package_path})
+    time.sleep(6)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and "interrupted" in err, err
+    rows = list(csv.reader(open(out, encoding="utf-8")))
+    assert rows[0][0] == "submission" and rows[1][0] == "essay.ipynb"
+
+    def left():
+        out = []
+        for d in os.listdir("/proc"):
+            try:
+                if d.isdigit() and sandbox.UID_BASE <= os.stat(f"/proc/{d}").st_uid \
+                        < sandbox.UID_BASE + 64:
+                    out.append(d)
+            except OSError:
+                pass
+        return out
+    for _ in range(100):            # killed processes take a moment to be reaped
+        if not left():
+            break
+        time.sleep(0.1)
+    assert left() == []

@@ -197,6 +197,15 @@ def sandbox_processes():
     return out
 
 
+def _settled(find, seconds=10):
+    """``find()`` once it is empty, or after ``seconds`` (killed processes take a moment)."""
+    import time
+    end = time.monotonic() + seconds
+    while find() and time.monotonic() < end:
+        time.sleep(0.1)
+    return find()
+
+
 def groups_left():
     """The cgroups this process made for its sandboxes that are still there."""
     found = []
@@ -284,7 +293,8 @@ def _grade_the_class(tmp):
     return {"expected": expected, "got": got, "table": table, "out": str(out), "tmp": str(tmp),
             "outside": str(outside), "accepted": [a.decode() for a in accepted],
             "before_dev": sorted(before_dev), "feedback": str(tmp / "feedback"),
-            "left": sandbox_processes(), "line": line, "cgroups": sandbox.cgroup_limits(),
+            "left": _settled(sandbox_processes), "line": line,
+            "cgroups": sandbox.cgroup_limits(),
             "groups_left": groups_left()}
 
 

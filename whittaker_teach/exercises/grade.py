@@ -347,6 +347,9 @@ class Settings:
     unsafe: bool = False
 
 
+_LIVE = set()          # the runs going on (killed if the grader is interrupted)
+
+
 def _run(raw, settings, package=None, solvers=True, slot=0):
     """Run one notebook (its bytes): (worker result or None, grader-side failure or '', the
     check log as text)."""
@@ -383,6 +386,7 @@ def _run(raw, settings, package=None, solvers=True, slot=0):
             proc = subprocess.Popen(cmd, env=env, cwd=cwd, stdin=subprocess.DEVNULL,
                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                     start_new_session=True, pass_fds=(log_w,))
+            _LIVE.add(proc)
         finally:
             os.close(log_w)
         out, err = _Reader(proc.stdout, sandbox.MAX_RESULT_BYTES), _Reader(proc.stderr, 20_000)
@@ -397,6 +401,7 @@ def _run(raw, settings, package=None, solvers=True, slot=0):
             failure = f"timeout: the notebook ran longer than {settings.timeout:g} s"
         finally:
             _kill(proc)
+            _LIVE.discard(proc)
             if groups is not None:
                 hit = groups.hit()
                 groups.close()
@@ -732,7 +737,8 @@ def grade(paths, out, feedback=None, jobs=2, cell_timeout=CELL_TIMEOUT,
             finally:
                 slots.put(slot)
 
-        with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+        pool = ThreadPoolExecutor(max_workers=max(1, jobs))
+        try:
             futures = {pool.submit(run, raw, solvers_allowed(ex)): (i, name, ex)
                        for i, name, ex, raw in todo}
             for fut in as_completed(futures):
@@ -743,6 +749,12 @@ def grade(paths, out, feedback=None, jobs=2, cell_timeout=CELL_TIMEOUT,
                     rows = [Row(name, ex, "", False, "the grader could not grade it "
                                 f"({type(exc).__name__}); please report it", 0, 0)]
                 done(i, rows)
+        except BaseException:       # Ctrl-C, say: no new run, and the running ones killed
+            pool.shutdown(wait=False, cancel_futures=True)
+            for proc in list(_LIVE):
+                _kill(proc)
+            raise
+        pool.shutdown()
     finally:
         writer.close()
         if bar is not None:
@@ -825,9 +837,14 @@ def main(args):
               file=sys.stderr)
         return 2
     start = time.monotonic()
-    rows, line = grade(paths, args.out, args.feedback, args.jobs, args.cell_timeout,
-                       args.timeout, args.memory, args.quiet, unsafe=bool(why),
-                       gradebook=args.gradebook, canvas=args.canvas, moodle=args.moodle)
+    try:
+        rows, line = grade(paths, args.out, args.feedback, args.jobs, args.cell_timeout,
+                           args.timeout, args.memory, args.quiet, unsafe=bool(why),
+                           gradebook=args.gradebook, canvas=args.canvas, moodle=args.moodle)
+    except KeyboardInterrupt:
+        print(f"\ngrade: interrupted; the submissions graded so far are in {args.out}",
+              file=sys.stderr)
+        return 130
     took = time.monotonic() - start
     print(f"{line} ({took:.0f} s); grades in {args.out}"
           + (f", feedback in {args.feedback}" if args.feedback else ""))
