@@ -335,12 +335,17 @@ def factor(expr):
     """``sympy.factor(expr)`` for a polynomial in its symbols and functions, without the
     ``together`` that ``factor`` first applies to any expression (half its cost on a
     polynomial): one walk into a polynomial ring and its ``factor_list``, the result
-    built as ``factor`` builds it.  ``NotPolynomial`` for anything else (a fraction, a
-    root, a float).
+    built as ``factor`` builds it.  A rational function is factored as ``factor`` does
+    it, numerator and denominator each (the product of the factors' powers then merges
+    the factors they share, as ``factor``'s product does): one walk, without
+    ``together``'s rebuilding of the sum over a common denominator.  ``NotPolynomial``
+    for anything else (a root, a float).
 
     >>> x, y = sp.symbols("x y")
     >>> factor(2*x**2*y + 4*x*y + 2*y)
     2*y*(x + 1)**2
+    >>> factor(x*sp.tan(y)**2/2 + x/2) == sp.factor(x*sp.tan(y)**2/2 + x/2)
+    True
     """
     from sympy.core.mul import _keep_coeff
     gens, roots = _generators(expr)
@@ -350,12 +355,17 @@ def factor(expr):
         return expr
     walk = _walker(list(gens), {})
     num, den = walk(expr)
-    if den:
-        raise NotPolynomial(expr)
+    ZZ = _ring(walk.ring.ngens, "ZZ")
     c, p = num.clear_denoms()
-    coeff, factors = _factor_list(p.set_ring(_ring(walk.ring.ngens, "ZZ")))
-    return _keep_coeff(sp.Rational(int(coeff), int(c)),
-                       sp.Mul(*[walk.as_expr(f)**k for f, k in factors]))
+    coeff, factors = _factor_list(p.set_ring(ZZ))
+    coeff = sp.Rational(int(coeff), int(c))
+    pieces = [walk.as_expr(f)**k for f, k in factors]
+    for f, k in den.items():        # a denominator: its factors with exponents -k
+        cd, q = f.clear_denoms()
+        dc, dfs = _factor_list(q.set_ring(ZZ))
+        coeff *= sp.Rational(int(cd), int(dc))**k
+        pieces += [walk.as_expr(g)**(-j * k) for g, j in dfs]
+    return _keep_coeff(coeff, sp.Mul(*pieces))
 
 
 def groups(expr, symbols):
