@@ -188,7 +188,12 @@ def _walk(e, mapping, memo):
             r = e
         else:
             args = [_walk(a, mapping, memo) for a in e.args]
-            r = e.func(*args) if any(a is not b for a, b in zip(args, e.args)) else e
+            if all(a is b for a, b in zip(args, e.args)):
+                r = e
+            elif type(e) is sp.Pow:
+                r = power(*args)        # Pow(*args), without its queries that change nothing
+            else:
+                r = e.func(*args)
         memo[e] = r
     return r
 
@@ -274,24 +279,37 @@ class _Direction:
         self.rates = rates
 
 
-_HAS = object()
+_FREE = object()
+_EMPTY = frozenset()
 
 
 def _has(e, s, memo):
-    """``s in e.free_symbols``, each distinct subexpression visited once."""
-    key = (_HAS, e, s)
+    """``s in e.free_symbols`` (for a path: any of its symbols), from the free symbols of
+    each distinct subexpression, found once for every symbol (one walk of the tree, not
+    one per symbol differentiated by)."""
+    free = _free(e, memo)
+    if isinstance(s, _Direction):
+        return not free.isdisjoint(s.rates)
+    return s in free
+
+
+def _free(e, memo):
+    """The free symbols of ``e`` (a frozenset), each distinct subexpression visited once
+    (``memo``: the derivative memo, under the key ``(_FREE, e)``)."""
+    key = (_FREE, e)
     r = memo.get(key)
     if r is None:
         if isinstance(e, sp.Symbol):
-            r = e in s.rates if isinstance(s, _Direction) else e == s
+            r = frozenset((e,))
         elif not e.args:
-            r = False
+            r = _EMPTY
         elif type(e) in (sp.Add, sp.Mul, sp.Pow) or _plain_function(type(e)):
-            r = any(_has(a, s, memo) for a in e.args)
-        elif isinstance(s, _Direction):
-            r = not e.free_symbols.isdisjoint(s.rates)
+            sets = [_free(a, memo) for a in e.args]
+            sets = [x for x in sets if x]
+            r = (_EMPTY if not sets else sets[0] if len(sets) == 1
+                 else frozenset().union(*sets))
         else:
-            r = s in e.free_symbols
+            r = frozenset(e.free_symbols)
         memo[key] = r
     return r
 
