@@ -11,7 +11,7 @@ a**2 + a*b*(tan(theta)**2 + 1)
 import sympy as sp
 
 from . import polywalk
-from .dag import expanded_terms, instances
+from .dag import expanded_terms, instances, substitute
 
 __all__ = ["collected", "rational", "rational_parts", "pythagoras", "factored"]
 
@@ -44,7 +44,7 @@ def _ops_above(expr, limit):
     fraction of each quotient) is called only when an upper bound counted in the same
     walk is above the limit (:func:`_ops_bound`).  On the examples and the scale
     families that spares all but a few of its calls."""
-    n, least, most, stack = 0, 0, 0, [expr]
+    n, least, seen, stack = 0, 0, [], [expr]
     while stack and n <= 4 * limit + 1:
         e = stack.pop()
         n += 1
@@ -52,10 +52,11 @@ def _ops_above(expr, limit):
             least += len(e.args) - 1       # count_ops counts one ADD or SUB per joined term,
         elif e.is_Pow or e.is_Function:
             least += 1                     # one POW, DIV or EXP per power, one per function
-        most += _ops_bound(e)
+        seen.append(e)
         stack.extend(e.args)
     if n > 4 * limit + 1 or least > limit or expanded_terms(expr, SWELL_LIMIT) > SWELL_LIMIT:
         return True
+    most = sum(_ops_bound(e) for e in seen)     # only for a tree that passed the cheap tests
     return most > limit and sp.count_ops(expr) > limit
 
 
@@ -142,10 +143,15 @@ def pythagoras(expr):
     >>> pythagoras((sp.sin(u)**2 + sp.cos(u)**2)*sp.cos(u))
     cos(u)
     """
-    args = {f.args[0] for f in instances(expr, (sp.sin, sp.cos))}
+    found = instances(expr, (sp.sin, sp.cos, sp.Add))      # one walk of the shared tree
+    args = {f.args[0] for f in found if isinstance(f, (sp.sin, sp.cos))}
     if not args:
         return expr
-    return expr.xreplace({sp.sin(u)**2 + sp.cos(u)**2: sp.S.One for u in args})
+    sums = {sp.sin(u)**2 + sp.cos(u)**2 for u in args}
+    present = [f for f in found if isinstance(f, sp.Add) and f in sums]
+    if not present:
+        return expr
+    return substitute(expr, dict.fromkeys(present, sp.S.One))    # xreplace, once a node
 
 
 def rational(expr, symbols=()):
