@@ -33,7 +33,9 @@ def nielsen(red):
             qp, q = red._qp[c], S.q[c]
             e = red._d(dL, qp) - 2 * red._d(Ls, q)                               # (2.4)
             for P, qs, d in zip(red._Pstar, red._qdstar, dq):
-                e -= P * (red._d(d, qp) - 2 * red._d(qs, q))
+                term = red._d(d, qp) - 2 * red._d(qs, q)
+                if term != 0:       # P*0 would ask whether every factor of P is finite
+                    e -= P * term
             eqs.append(e)
         red._cache["nielsen"] = {"2.1": dL, "2.4": eqs}
     return red._cache["nielsen"]

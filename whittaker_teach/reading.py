@@ -77,8 +77,11 @@ def powers_combined(expr):
     sqrt(a + b)/sqrt(a - b)
     """
     def merge(m):
+        bases = [f.as_base_exp()[0] for f in m.args]
+        if sum(isinstance(b, sp.Add) for b in bases) < 2 and len(set(bases)) == len(bases):
+            return m                # no two sums to compare, no base repeated: as it is
         groups, order = {}, []
-        keys = _expansion_keys([f.as_base_exp()[0] for f in m.args])
+        keys = _expansion_keys(bases)
         for f in sp.Mul.make_args(m):
             b, e = f.as_base_exp()
             key = keys.get(b, b)
@@ -190,6 +193,12 @@ def check_reading(label, claim, shown, library, red, sample=None):
                           definitions=definitions)
 
 
+def _times(a, b):
+    """``a * b``, and 0 at once where ``b`` is 0 (SymPy's 0 * a asks whether every factor
+    of ``a`` is finite, a deep query on a large sum; the sum then drops the 0 alike)."""
+    return sp.S.Zero if b == 0 else a * b
+
+
 def _primes(red):
     return list(red._qp.values())
 
@@ -247,7 +256,7 @@ def whittaker_forms(red):
             # - P (d/dx(dq*/dq') - dq*/dq), written term by term so that equal terms of
             # opposite sign cancel as built (the sledge's m tan(theta)(1 + tan^2 theta))
             inner, P = red._d(qs, qp), _tidy(red, P, pr)
-            e += P * _tidy(red, red._d(qs, q), pr)
+            e += _times(P, _tidy(red, red._d(qs, q), pr))
             if inner != 0:
                 e -= P * TotalD(_tidy(red, inner, pr), x)
         out.append(e)
@@ -298,6 +307,7 @@ def nielsen_forms(red):
         e = _tidy(red, red._d(dL, qp), pr + [red._qpp[c]]) - 2 * _tidy(red, red._d(Ls, q), pr)
         for P, qs in zip(red._Pstar, red._qdstar):
             P = _tidy(red, P, pr)
-            e += 2 * P * _tidy(red, red._d(qs, q), pr) - P * _tidy(red, red._d(red._D(qs), qp), pr)
+            e += (_times(2 * P, _tidy(red, red._d(qs, q), pr))
+                  - _times(P, _tidy(red, red._d(red._D(qs), qp), pr)))
         out.append(e)
     return out

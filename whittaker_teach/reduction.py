@@ -257,7 +257,9 @@ class Reduction:
         qp, q = self._qp[c], S.q[c]
         e = self._D(d(Ls, qp)) - d(Ls, q)
         for P, qs in zip(self._Pstar, self._qdstar):
-            e -= P * (self._D(d(qs, qp)) - d(qs, q))
+            term = self._D(d(qs, qp)) - d(qs, q)
+            if term != 0:           # P*0 would ask whether every factor of P is finite
+                e -= P * term
         return e
 
     def _accelerations(self):
@@ -288,18 +290,22 @@ class Reduction:
         through d/dq_eps (``_D``) as d f/dq'_mu q''_mu, so the entry is
         d^2 L*/dq'_nu dq'_mu - sum_beta P_beta d^2 qdot*_beta/dq'_nu dq'_mu: second
         derivatives that building (1.26) took already (one memo), not a derivative of
-        each whole equation."""
+        each whole equation.  The entries are only evaluated (the matrix is shown regular
+        at a point), so each sum and product of them is built unevaluated (no
+        ``flatten`` of the large pieces: the same value)."""
         Ls, qp = self._Lstar, self._qp
         rows = []
         for c in self._nus:
             row = []
             for k in self._nus:
-                e = self._d(self._d(Ls, qp[c]), qp[k])
+                terms = [self._d(self._d(Ls, qp[c]), qp[k])]
                 for P, qs in zip(self._Pstar, self._qdstar):
                     inner = self._d(qs, qp[c])
                     if inner != 0:
-                        e -= P * self._d(inner, qp[k])
-                row.append(e)
+                        outer = self._d(inner, qp[k])
+                        if outer != 0:
+                            terms.append(sp.Mul(sp.S.NegativeOne, P, outer, evaluate=False))
+                row.append(terms[0] if len(terms) == 1 else sp.Add(*terms, evaluate=False))
             rows.append(row)
         return sp.Matrix(rows)
 
