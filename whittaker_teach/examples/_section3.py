@@ -96,10 +96,14 @@ def section3_steps(red):
                             smp)))
     F = power(-k**2 * th**2 + 2 * h - m * C**2, sp.S.Half) / (sp.sqrt(J) * C * sp.cos(th))
     along = {thp: F, thpp: diff(F, th) * F}
-    st.append(Step("3.11", "a first integral of (3.10), $C$ a constant",
-                   [eq(thp, F)], check_zero(
-        "3.11", r"$\theta' = F(\theta)$, $\theta'' = F'(\theta)\,F$ satisfy (3.10) for every $C$",
-        printed.xreplace(along), smp_c)))
+    # shown squared: the paper prints one root, but theta' changes sign at each turning
+    # point of theta; (3.10) holds on either root (theta'^2 and theta'' = F'F are the same)
+    st.append(Step("3.11", "a first integral of (3.10), $C$ a constant, as a square: the paper "
+                   r"prints the root $\theta' = F(\theta)$, but $\theta'$ changes sign at each "
+                   r"turning point of $\theta$ (erratum 8)", [eq(thp**2, F**2)], check_zero(
+        "3.11", r"$\theta' = \pm F(\theta)$, $\theta'' = F'(\theta)\,F$ satisfy (3.10) for "
+        "every $C$", [printed.xreplace(along), printed.xreplace({thp: -F, thpp: diff(F, th) * F})],
+        smp_c)))
     integral = R * power(m + J * thp**2 * sp.cos(th)**2, -1)
     st.append(Step("3.11a", r"equivalently $C^2 = (2h - k^2\theta^2)/(m + J\theta'^2\cos^2"
                    r"\theta)$ is constant along (1.26)", [eq(C**2, integral)], check_zero(
@@ -121,7 +125,8 @@ def section3_steps(red):
     thdot = F * xdot_shown
     thdd = S.qdd[S.coordinates[1]]
     st.append(Step("3.14", r"$\dot\theta = \theta'\dot x$ (the OCR prints $\theta$ for "
-                   r"$\dot\theta$), and its derivative", [eq(thd, thdot), eq(thdd, -k**2 / J * th)],
+                   r"$\dot\theta$), squared: the root has no one sign (erratum 8); and its derivative",
+                   [eq(thd**2, thdot**2), eq(thdd, -k**2 / J * th)],
                    check_identity(
         "3.14", r"$\dot\theta = \theta'\dot x$ on (3.11), and $\frac{d\dot\theta}{d\theta}\,"
         r"\dot\theta = -k^2\theta/J$, as (1.4) gives in time",

@@ -469,9 +469,10 @@ class _Run:
                                         "the end of the span"))
             return
         err = ChartError(
-            f"the chart {e} is nearly singular at {e} = {s:.10g} (t = {t:.10g}): qdot_{e} "
+            f"the chart {e} is nearly singular at {e} = {s:.10g} (t = {t:.10g}): d{e}/dt "
             f"fell to {self.tau:g} of the speed without vanishing (no turning point); the "
-            f"reduced equations are too stiff there.  Pass on_turning_point='switch' to "
+            f"reduced equations divide by it, and the step size collapses there.  Pass "
+            f"on_turning_point='switch' to "
             f"cross such a stretch in time, or lower turning_tol")
         err.coordinate, err.value, err.t = e, s, t
         raise err
