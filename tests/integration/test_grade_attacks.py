@@ -273,6 +273,9 @@ def _grade_the_class(tmp):
     expected = make_class(folder, outside)
     before_dev = set(os.listdir("/dev"))
     os.environ["WT_GRADER_SECRET"] = SECRET
+    # variables that make check() record instead of check: the grader must not obey them
+    os.environ["WHITTAKER_TEACH_COLLECT"] = str(tmp / "collected.json")
+    os.environ["WHITTAKER_TEACH_CHECK_LOG"] = str(tmp / "check-log.jsonl")
     try:
         paths = sorted(str(p) for p in folder.iterdir())
         out = tmp / "grades.csv"
@@ -280,7 +283,8 @@ def _grade_the_class(tmp):
                                    cell_timeout=20, timeout=60, memory=MEMORY_MB, disk=DISK_MB,
                                    quiet=True, gradebook=str(tmp / "gradebook.csv"))
     finally:
-        os.environ.pop("WT_GRADER_SECRET", None)
+        for name in ("WT_GRADER_SECRET", "WHITTAKER_TEACH_COLLECT", "WHITTAKER_TEACH_CHECK_LOG"):
+            os.environ.pop(name, None)
         stop.set()
         thread.join(5)
         server.close()
@@ -307,6 +311,8 @@ def failure_of(batch, name):
 
 
 def test_honest_and_wrong_students_are_graded_right(batch):
+    assert not (batch["tmp"] / "collected.json").exists()
+    assert not (batch["tmp"] / "check-log.jsonl").exists()
     for name in ("honest_1.ipynb", "honest~1.ipynb", "=1+1.ipynb", "-dash.ipynb",
                  "wrong.ipynb"):
         assert parts_of(batch, name) == batch["expected"][name], batch["got"][name]

@@ -695,7 +695,9 @@ def grade(paths, out, feedback=None, jobs=2, cell_timeout=CELL_TIMEOUT,
     why = sandbox.available()
     if why and not unsafe:
         raise SandboxUnavailable(why)
-    os.environ.pop("WHITTAKER_TEACH_CHECK_LOG", None)      # the grader checks, never records
+    for name in ("WHITTAKER_TEACH_CHECK_LOG", "WHITTAKER_TEACH_CHECK_FD",
+                 "WHITTAKER_TEACH_COLLECT"):                  # the grader checks, never records
+        os.environ.pop(name, None)
     settings = Settings(cell_timeout, timeout, memory, processes, disk, unsafe)
     paths = [str(p) for p in paths]
     names = _names(paths)
