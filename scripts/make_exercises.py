@@ -43,6 +43,7 @@ Cell markers in a source:
 ``# %% solution``                 code of the solution only
 ``# %% exercise``                 ``EXERCISE = {...}``: what the exercise is (in neither notebook)
 ``# %% tag=nbval-ignore-output``  a cell tag (only for timing outputs)
+``# %% alt="..."``                the alt text of the figure a code cell draws
 
 and inside a code cell, the lines between ``### BEGIN SOLUTION`` and
 ``### END SOLUTION`` are replaced, in the student notebook, by the
@@ -78,7 +79,10 @@ def parse_source(text: str, name: str = "<source>") -> list[dict]:
     for lineno, line in enumerate(text.splitlines(), 1):
         m = HEADER.match(line)
         if m:
-            words = m.group("rest").split()
+            rest = m.group("rest")
+            alt = re.search(r'\balt="([^"]+)"', rest)      # a figure's alt text
+            rest = rest[:alt.start()] + rest[alt.end():] if alt else rest
+            words = rest.split()
             kind = "code"
             if words and words[0] == "[markdown]":
                 kind = "markdown"
@@ -88,6 +92,8 @@ def parse_source(text: str, name: str = "<source>") -> list[dict]:
             unknown = roles - {"statement", "solution", "student", "exercise"}
             if unknown:
                 raise SourceError(f"{name}:{lineno}: unknown cell marker {sorted(unknown)}")
+            if alt:
+                tags.append("alt:" + alt.group(1))
             current = {"type": kind, "roles": roles, "tags": tags, "lines": []}
             cells.append(current)
             continue
@@ -175,8 +181,12 @@ def _nb(cells: list[tuple[str, str, list]], ex_id: str):
         else:
             cell = nbformat.v4.new_code_cell(source)
         cell.id = f"{ex_id}-{i:02d}"[-64:]
+        alts = [t[4:] for t in tags if t.startswith("alt:")]
+        tags = [t for t in tags if not t.startswith("alt:")]
         if tags:
             cell.metadata["tags"] = list(tags)
+        if alts:                       # the alt text of the figure the cell draws
+            cell.metadata["mystnb"] = {"image": {"alt": alts[0]}}
         nb.cells.append(cell)
     return nb
 

@@ -169,7 +169,7 @@ outcome
 # (`on_turning_point="switch"`). In time, the full model (1.4) has no trouble at
 # all; $x(t)$ simply turns back:
 
-# %% solution
+# %% solution alt="x against t for the sledge whose amplitude exceeds pi/2: the exact solution (thick grey), the full model in t (dots) and the reduced model in x that switches to time at each turning point of x (thin line) agree; dotted vertical lines mark the turning points, where x runs back."
 import matplotlib.pyplot as plt
 import numpy as np
 
