@@ -156,10 +156,10 @@ def make_class(folder, outside):
         "daemon.ipynb": ([START, "if os.fork() == 0:\n    os.setsid()\n"
                           "    if os.fork() == 0:\n        time.sleep(600)\n    os._exit(0)",
                           checks(RIGHT)], right),
-        "flood.ipynb": ([START, "from IPython.display import display, HTML\n"
+        # (answers first: the flood may end its own kernel, never the grader or the batch)
+        "flood.ipynb": ([START, checks(RIGHT), "from IPython.display import display, HTML\n"
                          "for i in range(100):\n    display(HTML('x' * 1_000_000))",
-                         "os.write(1, b'y' * 50_000_000)\nprint('z' * 20_000_000)",
-                         checks(RIGHT)], right),
+                         "os.write(1, b'y' * 50_000_000)\nprint('z' * 20_000_000)"], right),
         "disk.ipynb": ([START, checks(RIGHT, ["L_star"]),
                         "for i in range(30):\n"
                         "    open(f'big{i}', 'wb').write(b'x' * 20_000_000)"], first),
