@@ -110,7 +110,7 @@ def _why_not():
 
 # ---------------------------------------------------------------- cgroups
 def _v1_mounts():
-    """{controller: mount point} of the cgroup v1 hierarchies."""
+    """{controller: (mount point, the hierarchy's folder mounted there)}, cgroup v1."""
     out = {}
     try:
         with open("/proc/self/mountinfo", encoding="utf-8") as f:
@@ -119,8 +119,8 @@ def _v1_mounts():
                 fields = right.split()
                 if len(fields) >= 3 and fields[0] == "cgroup":
                     for opt in fields[2].split(","):
-                        if opt in ("memory", "pids"):
-                            out[opt] = left.split()[4]
+                        if opt in ("memory", "pids"):     # (mount point, its root)
+                            out[opt] = (left.split()[4], left.split()[3])
     except OSError:
         pass
     return out
@@ -154,10 +154,12 @@ class Cgroups:
         group = cls()
         if os.geteuid() != 0:
             return group
-        for controller, mount in _v1_mounts().items():
+        for controller, (mount, root) in _v1_mounts().items():
             own = _own_path(controller)
             if own is None:
                 continue
+            if root != "/" and (own == root or own.startswith(root + "/")):
+                own = own[len(root):]        # a container that mounts only its own subtree
             d = Path(mount) / own.lstrip("/") / name
             try:
                 d.mkdir()
