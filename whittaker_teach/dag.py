@@ -20,7 +20,7 @@ True
 
 import sympy as sp
 
-__all__ = ["tree_size", "substitute", "bottom_up", "instances", "along", "zeroed", "max_depth",
+__all__ = ["tree_size", "substitute", "renamed", "bottom_up", "instances", "along", "zeroed", "max_depth",
            "expanded_terms", "diff", "power"]
 
 
@@ -112,6 +112,53 @@ def substitute(expr, mapping, memo=None):
     ``in`` and ``[]``: a dict, or an object that replaces every node of a kind."""
     memo = {} if memo is None else memo
     return _walk(sp.sympify(expr), mapping, memo)
+
+
+def renamed(expr, mapping, memo=None):
+    """``substitute(expr, mapping)`` where ``mapping`` sends symbols to distinct objects
+    that are neither sums, products nor numbers (functions of a variable and their
+    derivatives): each sum and product then keeps its terms and factors as they are,
+    only their canonical order may change, so it is rebuilt by sorting them as
+    ``flatten`` sorts them (``_addsort``, ``_mulsort``, the number first), without
+    ``flatten``'s collecting and its assumption queries.  The same expression
+    (equal, argument by argument) as ``substitute``'s.
+
+    >>> x, y, t = sp.symbols("x y t")
+    >>> f = sp.Function("f")(t)
+    >>> e = 3*x**2*y + sp.sqrt(x + y)/y
+    >>> renamed(e, {x: f, y: f.diff(t)}) == e.xreplace({x: f, y: f.diff(t)})
+    True
+    """
+    if any(v.is_Add or v.is_Mul or v.is_Number for v in mapping.values()):
+        raise ValueError("renamed: a value of the mapping is a sum, a product or a number")
+    memo = {} if memo is None else memo
+    return _renamed(sp.sympify(expr), mapping, memo)
+
+
+def _renamed(e, mapping, memo):
+    from sympy.core.add import _addsort
+    from sympy.core.mul import _mulsort
+    r = memo.get(e)
+    if r is None:
+        if e in mapping:
+            r = mapping[e]
+        elif not e.args:
+            r = e
+        else:
+            args = [_renamed(a, mapping, memo) for a in e.args]
+            t = type(e)
+            if all(a is b for a, b in zip(args, e.args)):
+                r = e
+            elif (t is sp.Add or t is sp.Mul) and e.is_commutative:
+                rest = [a for a in args if not a.is_Number]
+                (_addsort if t is sp.Add else _mulsort)(rest)
+                r = t._from_args([a for a in args if a.is_Number] + rest)
+            elif t is sp.Pow:
+                r = power(*args)
+            else:
+                r = e.func(*args)
+        memo[e] = r
+    return r
 
 
 def bottom_up(expr, f):

@@ -36,7 +36,7 @@ import mpmath
 import sympy as sp
 
 from .coordinates import name as _name, sign_assumptions as _assume
-from .dag import along, diff, power, substitute, tree_size, zeroed
+from .dag import along, diff, power, renamed, substitute, tree_size, zeroed
 from .errors import ModelError, ModelTypeError, guarded
 from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
                       velocity_form, whittaker_forms)
@@ -192,7 +192,7 @@ class Reduction:
     def to_public(self, expr):
         """Rewrite internal symbols (theta, thetaprime) as functions of q_eps (theta(x), ...)
         (one memo for the reduction: the public results share most of their pieces)."""
-        return substitute(expr, self._to_public, self._cache.setdefault("public", {}))
+        return renamed(expr, self._to_public, self._cache.setdefault("public", {}))
 
     # ----- the operations of the paper ------------------------------------
     def _sub15(self, expr):

@@ -114,3 +114,29 @@ def test_along_is_the_derivative_along_the_moved_path(seed):
     assert abs(complex((got - want).evalf(30, subs=pt))) < 1e-20
     assert dag.along(e, {w: u}) == sp.diff(e, w) * u or sp.expand(dag.along(e, {w: u})
                                                                   - sp.diff(e, w) * u) == 0
+
+
+def test_renamed_is_substitute_on_the_reductions_results():
+    """The public results (symbols renamed as functions of q_eps and their derivatives)
+    are the expressions ``xreplace`` builds, argument by argument, on the examples and a
+    chain of sleighs (sums and products re-sorted, not flattened)."""
+    import whittaker_teach as wt
+    from whittaker_teach import bench
+    from whittaker_teach.dag import renamed
+    from whittaker_teach.examples import catalogue
+    F = bench.chain(8)
+    reds = [wt.ChaplyginSystem(F["L"], F["q"], nonhol_coneqs=F["coneqs"],
+                               dependent=F["dependent"]).reduce(F["q"][0], +1)]
+    reds += [ex.build().reduce(ex.coordinate, d) for ex in catalogue() for d in (1, -1)]
+    for red in reds:
+        exprs = list(red._eqs) + list(red._tidy_accelerations().values())
+        exprs += [red._Lstar, red._vstar, red._Omega, *red._qdstar, *red._Pstar]
+        for e in exprs:
+            mine, theirs = renamed(e, red._to_public), e.xreplace(red._to_public)
+            assert mine == theirs and sp.srepr(mine) == sp.srepr(theirs)
+
+
+def test_renamed_refuses_a_sum_as_a_value():
+    x, y = sp.symbols("x y")
+    with pytest.raises(ValueError):
+        dag.renamed(x * y, {x: x + y})
