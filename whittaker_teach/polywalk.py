@@ -373,9 +373,11 @@ def groups(expr, symbols):
     the terms of ``expand(expr)`` grouped as ``as_independent(*symbols)`` splits them,
     by one walk into a polynomial ring (no ``expand``, which multiplies out through
     SymPy's own Mul).  ``NotPolynomial`` unless ``expr`` is a polynomial with rational
-    coefficients in symbols and functions that ``expand`` keeps as they are (where it
-    would open a function or its arguments, a root or a denominator, the caller uses
-    ``expand``).
+    coefficients in symbols and functions that ``expand`` keeps as they are, over a
+    denominator that is a product of such generators (m tan^2 written sin^2/cos^2:
+    terms with negative exponents, as ``expand`` writes them); where ``expand`` would
+    open a function or its arguments, a root or a denominator that is a sum, the caller
+    uses ``expand``.
 
     >>> x, y, t = sp.symbols("x y theta")
     >>> g = groups((x + y*sp.tan(t))**2, [x])
@@ -387,20 +389,34 @@ def groups(expr, symbols):
         raise NotPolynomial(expr)
     walk = _walker(list(gens), {})
     num, den = walk(expr)
-    if den:
-        raise NotPolynomial(expr)
+    R = walk.ring
+    shift = [0] * R.ngens           # a denominator of generators: their exponents
+    for f, k in den.items():
+        if f not in R.gens:
+            raise NotPolynomial(expr)
+        shift[R.gens.index(f)] += k
     symbols = set(symbols)
     mono_at = [i for i, g in enumerate(walk.order) if g in symbols or g.free_symbols & symbols]
     parts = {}
     for m, c in num.iterterms():
+        m = tuple(a - b for a, b in zip(m, shift))
         key = tuple(m[i] for i in mono_at)
         rest = list(m)
         for i in mono_at:
             rest[i] = 0
         parts.setdefault(key, {})[tuple(rest)] = c
-    R = walk.ring
-    return {sp.Mul(*[walk.order[i]**k for i, k in zip(mono_at, key)]):
-            R.from_dict(terms).as_expr(*walk.order) for key, terms in parts.items()}
+    if any(shift):
+        # terms with negative exponents (what expand gives a polynomial over a monomial)
+        to = R.domain.to_sympy
+
+        def coefficient(terms):
+            return sp.Add(*[sp.Mul(to(c), *[g**k for g, k in zip(walk.order, m) if k])
+                            for m, c in terms.items()])
+    else:
+        def coefficient(terms):
+            return R.from_dict(terms).as_expr(*walk.order)
+    return {sp.Mul(*[walk.order[i]**k for i, k in zip(mono_at, key)]): coefficient(terms)
+            for key, terms in parts.items()}
 
 
 _TRIG = frozenset(("sin", "cos", "tan", "cot", "sec", "csc", "sinh", "cosh", "tanh", "coth"))
@@ -429,7 +445,28 @@ FACTOR_TERMS_LIMIT = 24
 FACTOR_GENERATORS_LIMIT = 6
 
 
+_FACTOR_LISTS = {}
+_FACTOR_LISTS_LIMIT = 20000
+
+
 def _factor_list(p):
+    """:func:`_factor_list_of`, remembered by the polynomial's terms (exponent vectors and
+    coefficients) and its ring: the same polynomial in other generators (the coefficient
+    m tan^2 + m of each sleigh of a chain, with its own angle) is factored once, its
+    factors then written in the generators at hand."""
+    R = p.ring
+    key = (R.ngens, R.domain, tuple(sorted(p.items())))
+    hit = _FACTOR_LISTS.get(key)
+    if hit is None:
+        if len(_FACTOR_LISTS) >= _FACTOR_LISTS_LIMIT:
+            _FACTOR_LISTS.clear()
+        c, factors = _factor_list_of(p)
+        hit = _FACTOR_LISTS[key] = (c, [(dict(f.items()), k) for f, k in factors])
+    c, factors = hit
+    return c, [(R.from_dict(f), k) for f, k in factors]
+
+
+def _factor_list_of(p):
     """``p.factor_list()`` over the integers, at once where the answer is plain: once the
     integer and monomial contents are out, a polynomial of degree one in a generator x
     whose x-coefficient is a single term is irreducible (a factor would divide that term,

@@ -250,6 +250,17 @@ def test_groups_are_expands(expr):
 
 
 @pytest.mark.parametrize("expr", [
+    m * a**2 * sp.sin(t)**2 / sp.cos(t)**2 + m * a**2 + b**2,      # tan written sin/cos
+    (a + b * sp.sin(t))**2 / (c * sp.cos(t)**3) - a / c + b * c,
+    a * b / sp.sin(t) + a * sp.sin(t) / b,                          # a symbol below
+])
+def test_groups_over_a_denominator_of_generators_are_expands(expr):
+    mine, theirs = polywalk.groups(expr, [a, b]), _expand_groups(expr, [a, b])
+    assert mine == theirs
+    assert all(sp.srepr(mine[k]) == sp.srepr(theirs[k]) for k in theirs)
+
+
+@pytest.mark.parametrize("expr", [
     sp.exp(a + b) * a,                 # expand opens exp(a + b)
     sp.cos(a * (b + 1)) * a,           # and the argument a*(b + 1)
     a / (a + b), sp.sqrt(a) * b, 0.5 * a,
