@@ -32,10 +32,12 @@ LABELS = ([f"1.{i}" for i in range(1, 28)] + [f"2.{i}" for i in range(1, 5)]
 # the page margins of scripts/make_pdf.py (16 mm left and right), in points
 SIDE_MARGIN_PT = 16 / 25.4 * 72
 TOL_PT = 1.0
-# MathJax builds a tall bracket from glyph pieces (U+239B-U+23AF) that it
-# scales and clips to the bracket's height; pdftotext reports the unclipped
-# glyph box, thousands of points tall, so these pieces are not "words"
-STRETCHY_PIECES = re.compile("^[\u239b-\u23af]+$")
+# MathJax builds a tall bracket from glyph pieces (U+239B-U+23AF), and a wide
+# under- or overbrace from pieces of its TeX font's private-use area (U+E150-U+E154),
+# that it scales and clips to the bracket's height or the brace's width; pdftotext
+# reports the unclipped glyph box, thousands of points tall or wide, so these pieces
+# are not "words"
+STRETCHY_PIECES = re.compile("^[\u239b-\u23af\ue150-\ue154]+$")
 
 
 def _need(tool: str) -> str:

@@ -184,7 +184,8 @@ def test_unicode_names_are_those_of_the_statements():
 
 @pytest.mark.parametrize("ex_id", ["sledge-L-star", "kepler-orbit", "omega-and-energy",
                                    "projectile-path", "chaplygin-sleigh"])
-@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=60, deadline=None, derandomize=True,
+          suppress_health_check=[HealthCheck.too_slow])
 @given(data=st.data())
 def test_ascii_and_unicode_prints_read_the_same(ex_id, data):
     """Random expressions in the exercise's symbols: sstr, str and the statements' Unicode
@@ -196,7 +197,10 @@ def test_ascii_and_unicode_prints_read_the_same(ex_id, data):
         return
     ctx = names.context()
     for text in (sp.sstr(expr), str(expr)):
-        assert names.resolve(read_answer(text, context=ctx)) == expr, text
+        got = names.resolve(read_answer(text, context=ctx))
+        # the same expression; a nested product may come back flattened
+        # (I*(sqrt(2)*3**(1/4))/2 is read as sqrt(2)*3**(1/4)*I/2)
+        assert got == expr or sp.expand(got - expr) == 0, text
     uni = names.resolve(read_answer(unicode_str(expr), context=ctx))
     assert uni == expr or sp.expand(uni - expr) == 0, (unicode_str(expr), uni)
 

@@ -128,10 +128,10 @@ def section3_steps(red):
                    r"$\dot\theta$), squared: the root has no one sign (erratum 8); and its derivative",
                    [eq(thd**2, thdot**2), eq(thdd, -k**2 / J * th)],
                    check_identity(
-        "3.14", r"$\dot\theta = \theta'\dot x$ on (3.11), and $\frac{d\dot\theta}{d\theta}\,"
-        r"\dot\theta = -k^2\theta/J$, as (1.4) gives in time",
-        [F * xdot_c, diff(thdot, th) * thdot, S._accelerations()[thdd]],
-        [thdot, -k**2 * th / J, -k**2 * th / J], smp_c)))
+        "3.14", r"$\dot\theta = \theta'\dot x$ on (3.11), so $\dot\theta^2$ is the form shown, "
+        r"and $\frac{d\dot\theta}{d\theta}\,\dot\theta = -k^2\theta/J$, as (1.4) gives in time",
+        [F * xdot_c, (F * xdot_c)**2, diff(thdot, th) * thdot, S._accelerations()[thdd]],
+        [thdot, thdot**2, -k**2 * th / J, -k**2 * th / J], smp_c)))
     sol = a * sp.cos(k / sp.sqrt(J) * t + phi)
     st.append(Step("3.15", "the motion in time; $h = mC^2/2 + k^2a^2/2$",
                    [eq(th, sol), eq(h, m * C**2 / 2 + k**2 * a**2 / 2)], check_zero(
