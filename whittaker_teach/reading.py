@@ -81,7 +81,7 @@ def powers_combined(expr):
         if sum(isinstance(b, sp.Add) for b in bases) < 2 and len(set(bases)) == len(bases):
             return m                # no two sums to compare, no base repeated: as it is
         groups, order = {}, []
-        keys = _expansion_keys(bases)
+        keys = _expansion_keys(bases, small)
         for f in sp.Mul.make_args(m):
             b, e = f.as_base_exp()
             key = keys.get(b, b)
@@ -92,17 +92,25 @@ def powers_combined(expr):
         if len(order) == len(sp.Mul.make_args(m)):
             return m
         return sp.Mul(*[sp.Pow(groups[k][0], groups[k][1]) for k in order])
+    small = {}                  # sum -> whether it is small enough to expand (once each)
     return bottom_up(expr, lambda e: merge(e) if isinstance(e, sp.Mul) else e)
 
 
-def _expansion_keys(bases):
+def _small_sum(b, small):
+    r = small.get(b)
+    if r is None:
+        r = small[b] = (tree_size(b, BASE_EXPAND_LIMIT) <= BASE_EXPAND_LIMIT
+                        and expanded_terms(b, BASE_EXPAND_LIMIT) <= BASE_EXPAND_LIMIT)
+    return r
+
+
+def _expansion_keys(bases, small=None):
     """{base: expand(base)} for the small sums among ``bases`` that may equal another
     one after ``expand``; a sum whose value at the screening point
     (:func:`.verify.expand_may_equal`) differs from every other's keeps itself as key,
     with no ``expand`` (most products, whose sums all differ)."""
-    sums = [b for b in dict.fromkeys(bases) if isinstance(b, sp.Add)
-            and tree_size(b, BASE_EXPAND_LIMIT) <= BASE_EXPAND_LIMIT
-            and expanded_terms(b, BASE_EXPAND_LIMIT) <= BASE_EXPAND_LIMIT]
+    small = {} if small is None else small     # (a memo shared by one powers_combined)
+    sums = [b for b in dict.fromkeys(bases) if isinstance(b, sp.Add) and _small_sum(b, small)]
     alike = set()
     for i, b in enumerate(sums):
         for c in sums[i + 1:]:
