@@ -124,8 +124,8 @@ unit: setup
 	  else echo "unit: no tests in $$d yet, skipped"; fi; \
 	done; \
 	if [ -n "$$dirs" ]; then \
-	  echo "PYTHONHASHSEED=0 $(PYTHON) -m pytest$$dirs -q -m 'not slow' $(XDIST) $(PYTEST_ARGS)"; \
-	  PYTHONHASHSEED=0 $(PYTHON) -m pytest $$dirs -q -m "not slow" $(XDIST) $(PYTEST_ARGS); \
+	  echo "PYTHONHASHSEED=0 $(PYTHON) -m pytest$$dirs -q -m 'not slow' $(XDIST) $(if $(XDIST),--dist loadgroup) $(PYTEST_ARGS)"; \
+	  PYTHONHASHSEED=0 $(PYTHON) -m pytest $$dirs -q -m "not slow" $(XDIST) $(if $(XDIST),--dist loadgroup) $(PYTEST_ARGS); \
 	fi
 
 # The tests marked slow (minutes each: a 1e5-period run under tracemalloc, the quick

@@ -26,7 +26,7 @@
 EXERCISE = {
     "title": "The Chaplygin sleigh with an offset centre of mass",
     "equations": "1.16, 1.26",
-    "solvers": False,
+    "solvers": True,     # the statement gives the reduction to work with
     "symbols": "x xdot+ y ydot theta thetadot thetaprime thetaprimeprime h m+ J+ k+ b+ Jeff+",
     "domain": {"x": [0.0, 2.0], "xdot": "speed", "theta": "angle", "thetadot": "slope",
                "ydot": "slope", "thetaprime": "slope", "h": "energy"},

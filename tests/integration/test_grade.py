@@ -23,6 +23,10 @@ import pytest
 import whittaker_teach
 from whittaker_teach.exercises import grade as grading
 
+# every test that grades in the sandbox runs in one xdist worker (test_grade_attacks.py
+# says why; make unit runs with --dist loadgroup)
+pytestmark = pytest.mark.xdist_group("sandbox")
+
 EX = "kepler-orbit"
 RIGHT = {"L_star": '"sqrt(2*h + 2*m*mu/r)*sqrt(m*(r^2 + r\'^2))"',
          "r_pp": '"(r^2*(2*h*r + m*mu) + r\'^2*(4*h*r + 3*m*mu))/(2*r*(h*r + m*mu))"',

@@ -20,7 +20,11 @@ import pytest
 from whittaker_teach.exercises import grade as grading
 from whittaker_teach.exercises import sandbox
 
-pytestmark = pytest.mark.skipif(bool(sandbox.available()), reason=sandbox.available() or "-")
+# one xdist worker for every test that grades in the sandbox: the sandbox uids are the
+# same in each batch, and a test that looks for processes left running would see
+# another batch's (make unit runs with --dist loadgroup)
+pytestmark = [pytest.mark.skipif(bool(sandbox.available()), reason=sandbox.available() or "-"),
+              pytest.mark.xdist_group("sandbox")]
 
 EX = "kepler-orbit"
 RIGHT = {"L_star": "sqrt(2*h + 2*m*mu/r)*sqrt(m*(r^2 + r'^2))",
