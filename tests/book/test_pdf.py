@@ -38,6 +38,13 @@ TOL_PT = 1.0
 # reports the unclipped glyph box, thousands of points tall or wide, so these pieces
 # are not "words"
 STRETCHY_PIECES = re.compile("^[\u239b-\u23af\ue150-\ue154]+$")
+# a stretched vertical bar (\Big|, an evaluation bar) is one glyph scaled the same way:
+# skipped only when its box is that of a scaled glyph (taller than a page's text line)
+STRETCHY_BARS = re.compile("^[|\u2223\u2225\u2016]+$")
+
+
+def _stretched(w, y0, y1):
+    return bool(STRETCHY_PIECES.match(w) or (STRETCHY_BARS.match(w) and y1 - y0 > 100))
 
 
 def _need(tool: str) -> str:
@@ -133,7 +140,7 @@ def test_no_text_outside_the_text_area(words):
     outside = [
         f"page {p}: {w!r} at x {x0:.0f}..{x1:.0f} of {width:.0f} pt"
         for p, width, height, x0, y0, x1, y1, w in words
-        if not STRETCHY_PIECES.match(w) and (x0 < SIDE_MARGIN_PT - TOL_PT or x1 > width - SIDE_MARGIN_PT + TOL_PT
+        if not _stretched(w, y0, y1) and (x0 < SIDE_MARGIN_PT - TOL_PT or x1 > width - SIDE_MARGIN_PT + TOL_PT
         or y0 < -TOL_PT or y1 > height + TOL_PT)
     ]
     assert words, "pdftotext found no words"
