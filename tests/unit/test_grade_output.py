@@ -49,3 +49,13 @@ def test_gradebook_canvas_and_moodle_exports(tmp_path):
     assert m[1]["Maximum Grade"] == "4" and m[1]["Full name"] == "Jane Doe"
     assert summary([r for rows in per for r in rows], 3) == \
         "3 submissions: 3 parts right, 6 parts wrong, 1 failure"
+
+
+def test_recorder_writes_an_exception_class_as_its_name():
+    """A choice part answered with the class itself (check(..., wt.ChartError)) is recorded
+    as its name, which check() reads back with the same verdict."""
+    import whittaker_teach as wt
+    from whittaker_teach.exercises.recorder import _answer_text
+    assert _answer_text(wt.ChartError) == "ChartError"
+    assert _answer_text(ValueError) == "ValueError"
+    assert _answer_text(int) is None

@@ -42,6 +42,8 @@ def _answer_text(answer):
     """The answer as text the grader's parser reads back (None if it cannot be)."""
     if isinstance(answer, str):
         return answer[:MAX_ANSWER_CHARS]
+    if isinstance(answer, type) and issubclass(answer, BaseException):
+        return answer.__name__          # a choice part answered with an exception class
     kind = type(answer).__module__.split(".")[0]
     if kind == "numpy" and getattr(answer, "ndim", None) == 0:
         answer = answer.item()
