@@ -176,7 +176,7 @@ notebooks: setup
 # The drawings of the systems (book/figures/systems/<name>.py writes <name>.svg beside
 # itself, deterministically; a unit test fails when a stored SVG is out of date).
 figures: setup
-	@for f in book/figures/systems/*.py; do echo "$$f"; PYTHONHASHSEED=0 MPLBACKEND=svg $(PYTHON) "$$f"; done
+	@for f in book/figures/systems/[a-z]*.py; do echo "$$f"; PYTHONHASHSEED=0 MPLBACKEND=svg $(PYTHON) "$$f"; done
 
 # The exercise notebooks (student and solution) from their sources in
 # exercises/src/; only changed ones are re-executed (EXERCISES_ARGS=--all: every one).

@@ -101,7 +101,7 @@ def test_every_figure_has_alt_text_and_a_caption():
         assert (BOOK / src).is_file(), f"{page}: {src} does not exist"
 
 
-SCRIPTS = sorted((BOOK / "figures" / "systems").glob("*.py"))
+SCRIPTS = sorted((BOOK / "figures" / "systems").glob("[!_]*.py"))   # _draw.py is shared
 
 
 @pytest.mark.parametrize("script", SCRIPTS, ids=lambda p: p.stem)
@@ -110,6 +110,7 @@ def test_figure_script_reproduces_its_svg(script, tmp_path):
     compare (the stored SVG is what the script draws now, byte for byte)."""
     copy = tmp_path / script.name
     shutil.copy(script, copy)
+    shutil.copy(script.parent / "_draw.py", tmp_path / "_draw.py")   # the shared helpers
     subprocess.run([sys.executable, str(copy)], check=True, cwd=tmp_path, capture_output=True,
                    env={"PATH": "/usr/bin:/bin", "MPLBACKEND": "svg", "PYTHONHASHSEED": "0",
                         "HOME": str(tmp_path)})

@@ -11,25 +11,19 @@ Run ``python book/figures/systems/charged_particle.py``: it writes
 ``charged_particle.svg`` beside this file (deterministic output).
 """
 
+import sys
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("svg")
+sys.path.insert(0, str(Path(__file__).parent))
+import _draw  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-NAME = "charged_particle"
-plt.rcParams["svg.hashsalt"] = NAME
-plt.rcParams["svg.fonttype"] = "path"
-plt.rcParams["font.size"] = 22
-plt.rcParams["mathtext.fontset"] = "dejavuserif"
+_draw.style("charged_particle")
 
 
 def arrow(ax, p, q, color="k", lw=2.0, ms=22):
-    ax.annotate("", xy=q, xytext=p, annotation_clip=False,
-                arrowprops=dict(arrowstyle="-|>", color=color, lw=lw,
-                                mutation_scale=ms, shrinkA=0, shrinkB=0))
+    _draw.arrow(ax, p, q, color=color, lw=lw, ms=ms, zorder=None)
 
 
 def path():
@@ -96,10 +90,7 @@ def main():
 
     ax.set_xlim(-3.3, 3.6)
     ax.set_ylim(-3.2, 3.5)
-    out = Path(__file__).with_suffix(".svg")
-    fig.savefig(out, metadata={"Date": None}, bbox_inches="tight")
-    plt.close(fig)
-    return out
+    return _draw.save(fig, __file__)
 
 
 if __name__ == "__main__":

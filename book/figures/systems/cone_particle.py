@@ -12,19 +12,15 @@ Run ``python book/figures/systems/cone_particle.py``: it writes
 ``cone_particle.svg`` beside this file (deterministic output).
 """
 
+import sys
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("svg")
+sys.path.insert(0, str(Path(__file__).parent))
+import _draw  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-NAME = "cone_particle"
-plt.rcParams["svg.hashsalt"] = NAME
-plt.rcParams["svg.fonttype"] = "path"
-plt.rcParams["font.size"] = 22
-plt.rcParams["mathtext.fontset"] = "dejavuserif"
+_draw.style("cone_particle")
 
 A = 0.75                                  # the slope a = tan(alpha)
 ALPHA = np.arctan(A)
@@ -57,9 +53,7 @@ def line(ax, P, Q, **kw):
 
 def arrow(ax, P, Q, color="k", lw=2.0, ms=22, ls="-"):
     ax.plot(*zip(proj(*P), proj(*Q)), alpha=0)       # keeps the arrow in the limits
-    ax.annotate("", xy=proj(*Q), xytext=proj(*P), annotation_clip=False,
-                arrowprops=dict(arrowstyle="-|>", color=color, lw=lw,
-                                mutation_scale=ms, ls=ls, shrinkA=0, shrinkB=0))
+    _draw.arrow(ax, proj(*P), proj(*Q), color=color, lw=lw, ms=ms, ls=ls, zorder=None)
 
 
 def label(ax, P, text, dx=0.0, dy=0.0, **kw):
@@ -143,10 +137,7 @@ def main():
     ax.plot(u, v, "o", color="k", ms=10, zorder=5)
     ax.text(u - 0.38, v + 0.08, "$P$", fontsize=22)
 
-    out = Path(__file__).with_suffix(".svg")
-    fig.savefig(out, metadata={"Date": None}, bbox_inches="tight")
-    plt.close(fig)
-    return out
+    return _draw.save(fig, __file__)
 
 
 if __name__ == "__main__":

@@ -9,28 +9,20 @@ Run ``python book/figures/systems/kepler.py``: it writes ``kepler.svg`` beside
 this file (deterministic output).
 """
 
+import sys
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("svg")
+sys.path.insert(0, str(Path(__file__).parent))
+import _draw  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-NAME = "kepler"
-plt.rcParams["svg.hashsalt"] = NAME
-plt.rcParams["svg.fonttype"] = "path"
-plt.rcParams["font.size"] = 22
-plt.rcParams["mathtext.fontset"] = "dejavuserif"
+_draw.style("kepler")
 
 P_LR, ECC = 2.0, 0.55                      # the orbit drawn
 TH = np.radians(62.0)                      # where the particle is drawn
 
-
-def arrow(ax, A, B, color="k", lw=2.0, ms=22, style="-|>"):
-    ax.annotate("", xy=B, xytext=A, annotation_clip=False, zorder=5,
-                arrowprops=dict(arrowstyle=style, color=color, lw=lw,
-                                mutation_scale=ms, shrinkA=0, shrinkB=0))
+arrow = _draw.arrow
 
 
 def orbit(th):
@@ -72,10 +64,7 @@ def main():
     arrow(ax, (0, 0), (0, -P_LR), color="#6c3483", lw=1.6, ms=18, style="<|-|>")
     ax.text(0.12, -0.62 * P_LR, "$p$", color="#6c3483", va="center")
 
-    out = Path(__file__).with_suffix(".svg")
-    fig.savefig(out, metadata={"Date": None}, bbox_inches="tight")
-    plt.close(fig)
-    return out
+    return _draw.save(fig, __file__)
 
 
 if __name__ == "__main__":

@@ -9,19 +9,15 @@ Run ``python book/figures/systems/offset_sleigh.py``: it writes
 ``offset_sleigh.svg`` beside this file (deterministic output).
 """
 
+import sys
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("svg")
+sys.path.insert(0, str(Path(__file__).parent))
+import _draw  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-NAME = "offset_sleigh"
-plt.rcParams["svg.hashsalt"] = NAME
-plt.rcParams["svg.fonttype"] = "path"
-plt.rcParams["font.size"] = 22
-plt.rcParams["mathtext.fontset"] = "dejavuserif"
+_draw.style("offset_sleigh")
 
 TH = np.radians(28.0)                     # the heading drawn
 P = np.array([2.2, 1.5])                  # the contact point
@@ -29,11 +25,7 @@ E = np.array([np.cos(TH), np.sin(TH)])    # along the runner
 N = np.array([-np.sin(TH), np.cos(TH)])   # sideways
 B = 2.2                                   # the offset drawn
 
-
-def arrow(ax, A, Bp, color="k", lw=2.0, ms=22, style="-|>"):
-    ax.annotate("", xy=Bp, xytext=A, annotation_clip=False, zorder=5,
-                arrowprops=dict(arrowstyle=style, color=color, lw=lw,
-                                mutation_scale=ms, shrinkA=0, shrinkB=0))
+arrow = _draw.arrow
 
 
 def main():
@@ -89,10 +81,7 @@ def main():
 
     ax.set_xlim(-0.6, 7.0)
     ax.set_ylim(-0.7, 5.0)
-    out = Path(__file__).with_suffix(".svg")
-    fig.savefig(out, metadata={"Date": None}, bbox_inches="tight")
-    plt.close(fig)
-    return out
+    return _draw.save(fig, __file__)
 
 
 if __name__ == "__main__":

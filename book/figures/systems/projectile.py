@@ -8,27 +8,19 @@ Run ``python book/figures/systems/projectile.py``: it writes
 ``projectile.svg`` beside this file (deterministic output).
 """
 
+import sys
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("svg")
+sys.path.insert(0, str(Path(__file__).parent))
+import _draw  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-NAME = "projectile"
-plt.rcParams["svg.hashsalt"] = NAME
-plt.rcParams["svg.fonttype"] = "path"
-plt.rcParams["font.size"] = 22
-plt.rcParams["mathtext.fontset"] = "dejavuserif"
+_draw.style("projectile")
 
 C0, C1, K = 0.8, 1.0, 0.32                 # the parabola y = c0 + c1 x - K x^2
 
-
-def arrow(ax, A, B, color="k", lw=2.0, ms=22, style="-|>"):
-    ax.annotate("", xy=B, xytext=A, annotation_clip=False, zorder=5,
-                arrowprops=dict(arrowstyle=style, color=color, lw=lw,
-                                mutation_scale=ms, shrinkA=0, shrinkB=0))
+arrow = _draw.arrow
 
 
 def main():
@@ -65,10 +57,7 @@ def main():
     arrow(ax, (xp, yp), (xp, yp - 1.0), color="#1f6f3f", lw=2.6, ms=22)
     ax.text(xp + 0.12, yp - 0.85, "$m g_0$", color="#1f6f3f", va="center")
 
-    out = Path(__file__).with_suffix(".svg")
-    fig.savefig(out, metadata={"Date": None}, bbox_inches="tight")
-    plt.close(fig)
-    return out
+    return _draw.save(fig, __file__)
 
 
 if __name__ == "__main__":

@@ -11,30 +11,22 @@ Run ``python book/figures/systems/sledge.py``: it writes ``sledge.svg`` beside t
 file (deterministic output).
 """
 
+import sys
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("svg")
+sys.path.insert(0, str(Path(__file__).parent))
+import _draw  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-NAME = "sledge"
-plt.rcParams["svg.hashsalt"] = NAME
-plt.rcParams["svg.fonttype"] = "path"
-plt.rcParams["font.size"] = 22
-plt.rcParams["mathtext.fontset"] = "dejavuserif"
+_draw.style("sledge")
 
 TH = np.radians(32.0)                     # the heading drawn
 P = np.array([3.0, 2.0])                  # the contact point
 E = np.array([np.cos(TH), np.sin(TH)])    # along the runner
 N = np.array([-np.sin(TH), np.cos(TH)])   # sideways
 
-
-def arrow(ax, A, B, color="k", lw=2.0, ms=22, ls="-"):
-    ax.annotate("", xy=B, xytext=A, annotation_clip=False, zorder=5,
-                arrowprops=dict(arrowstyle="-|>", color=color, lw=lw,
-                                mutation_scale=ms, ls=ls, shrinkA=0, shrinkB=0))
+arrow = _draw.arrow
 
 
 def main():
@@ -93,10 +85,7 @@ def main():
 
     ax.set_xlim(-0.6, 6.9)
     ax.set_ylim(-0.7, 5.1)
-    out = Path(__file__).with_suffix(".svg")
-    fig.savefig(out, metadata={"Date": None}, bbox_inches="tight")
-    plt.close(fig)
-    return out
+    return _draw.save(fig, __file__)
 
 
 if __name__ == "__main__":

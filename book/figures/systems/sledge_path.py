@@ -14,19 +14,15 @@ Run ``python book/figures/systems/sledge_path.py``: it writes
 ``sledge_path.svg`` beside this file (deterministic output).
 """
 
+import sys
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("svg")
+sys.path.insert(0, str(Path(__file__).parent))
+import _draw  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-NAME = "sledge_path"
-plt.rcParams["svg.hashsalt"] = NAME
-plt.rcParams["svg.fonttype"] = "path"
-plt.rcParams["font.size"] = 22
-plt.rcParams["mathtext.fontset"] = "dejavuserif"
+_draw.style("sledge_path")
 
 A_AMP, SPEED = 0.9, 1.0                    # amplitude a (rad) and speed C
 
@@ -43,9 +39,7 @@ def path(t_end=2.45 * np.pi, n=4001):
 
 
 def arrow(ax, P, Q, color, lw=3.0):
-    ax.annotate("", xy=Q, xytext=P, annotation_clip=False,
-                arrowprops=dict(arrowstyle="-|>", color=color, lw=lw,
-                                mutation_scale=26, shrinkA=0, shrinkB=0))
+    _draw.arrow(ax, P, Q, color=color, lw=lw, ms=26, zorder=None)
 
 
 # the colours of the chapter 3 figure (sledge.py)
@@ -107,11 +101,7 @@ def draw():
 
 
 def main():
-    fig = draw()
-    path_svg = Path(__file__).with_suffix(".svg")
-    fig.savefig(path_svg, metadata={"Date": None}, bbox_inches="tight")
-    plt.close(fig)
-    return path_svg
+    return _draw.save(draw(), __file__)
 
 
 if __name__ == "__main__":
