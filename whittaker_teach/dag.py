@@ -136,29 +136,22 @@ def renamed(expr, mapping, memo=None):
 
 
 def _renamed(e, mapping, memo):
+    return _replaced(e, mapping, memo, _resorted)
+
+
+def _resorted(e, args):
+    """``e`` with new ``args``: a commutative sum or product only re-sorted (renaming
+    symbols changes their order, never what combines), a power by :func:`power`."""
     from sympy.core.add import _addsort
     from sympy.core.mul import _mulsort
-    r = memo.get(e)
-    if r is None:
-        if e in mapping:
-            r = mapping[e]
-        elif not e.args:
-            r = e
-        else:
-            args = [_renamed(a, mapping, memo) for a in e.args]
-            t = type(e)
-            if all(a is b for a, b in zip(args, e.args)):
-                r = e
-            elif (t is sp.Add or t is sp.Mul) and e.is_commutative:
-                rest = [a for a in args if not a.is_Number]
-                (_addsort if t is sp.Add else _mulsort)(rest)
-                r = t._from_args([a for a in args if a.is_Number] + rest)
-            elif t is sp.Pow:
-                r = power(*args)
-            else:
-                r = e.func(*args)
-        memo[e] = r
-    return r
+    t = type(e)
+    if (t is sp.Add or t is sp.Mul) and e.is_commutative:
+        rest = [a for a in args if not a.is_Number]
+        (_addsort if t is sp.Add else _mulsort)(rest)
+        return t._from_args([a for a in args if a.is_Number] + rest)
+    if t is sp.Pow:
+        return power(*args)
+    return e.func(*args)
 
 
 def bottom_up(expr, f):
@@ -227,6 +220,18 @@ def _zeroed(e, zero, walk):
 
 
 def _walk(e, mapping, memo):
+    return _replaced(e, mapping, memo, _rebuilt)
+
+
+def _rebuilt(e, args):
+    if type(e) is sp.Pow:
+        return power(*args)        # Pow(*args), without its queries that change nothing
+    return e.func(*args)
+
+
+def _replaced(e, mapping, memo, rebuild):
+    """``e`` with each key of ``mapping`` replaced, every distinct subexpression visited
+    once (``memo``); a node whose arguments changed is made by ``rebuild(e, args)``."""
     r = memo.get(e)
     if r is None:
         if e in mapping:
@@ -234,13 +239,8 @@ def _walk(e, mapping, memo):
         elif not e.args:
             r = e
         else:
-            args = [_walk(a, mapping, memo) for a in e.args]
-            if all(a is b for a, b in zip(args, e.args)):
-                r = e
-            elif type(e) is sp.Pow:
-                r = power(*args)        # Pow(*args), without its queries that change nothing
-            else:
-                r = e.func(*args)
+            args = [_replaced(a, mapping, memo, rebuild) for a in e.args]
+            r = e if all(a is b for a, b in zip(args, e.args)) else rebuild(e, args)
         memo[e] = r
     return r
 
