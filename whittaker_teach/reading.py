@@ -188,17 +188,18 @@ def carried_out(shown, red, pieces=None):
     return out
 
 
-def check_reading(label, claim, shown, library, red, sample=None):
+def check_reading(label, claim, shown, library, red, sample=None, at=None):
     """Check that the reading forms ``shown`` (a list) equal the library's ``library``:
     exactly by ``expand`` when cheap, else at random admissible points (40 digits).  Each
     piece under a d/dq_eps is compared with the piece the library built, and the form
-    with the library's pieces differentiated is compared with ``library``."""
+    with the library's pieces differentiated is compared with ``library``.  ``at``: as
+    for :func:`.verify.check_identity` (symbols replaced at evaluation)."""
     pieces = []
     definitions = carried_out(shown, red, pieces)
     lhs = list(shown) + [a for a, _ in pieces]
     rhs = list(library) + [b for _, b in pieces]
     return check_identity(label, claim, lhs, rhs, sample or red._sample,
-                          definitions=definitions)
+                          definitions=definitions, at=at)
 
 
 def _times(a, b):

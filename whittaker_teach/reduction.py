@@ -170,6 +170,7 @@ class Reduction:
         self._qp = {c: sp.Symbol(_name(c) + "prime") for c in self._nus}
         self._qpp = {c: sp.Symbol(_name(c) + "primeprime") for c in self._nus}
         self.h = sp.Symbol("h")
+        self._drawn = sp.Dummy(n + "dot_drawn")   # qdot_eps as drawn (``_sample``)
         made = [self.h, *self._qp.values(), *self._qpp.values()]
         for s in made:
             what = ("the parameter" if s.name in {p.name for p in S.parameters} else
@@ -409,8 +410,16 @@ class Reduction:
         return evaluate(E, {s: mpmath.mpf(pt[s]) for s in E.free_symbols})
 
     def _sample(self, rng, energy=True):
-        """A random point on the energy surface: h is the energy of the sampled motion
-        (not computed with ``energy=False``, for a caller that sets h itself)."""
+        """A random point on the energy surface, for the checks.
+
+        A motion is drawn (q, q', q'', the parameters and qdot_eps = v0 with the sign of
+        ``direction``) and h is its energy (1.11).  Then qdot_eps, and qdot_nu =
+        qdot_eps q'_nu (1.5), take the value of the root (1.12) at (q', q, h), computed
+        from the expression the library derived: v0 up to rounding.  So an expression in
+        qdot_eps evaluated at these points is its value at (1.12), the paper's ``*``
+        (:meth:`_star`), without the substituted expression being built; the check of
+        (1.12) compares the root with v0 (the symbol ``_drawn``).  With ``energy=False``,
+        qdot_eps is v0 and h is not set (for a caller that sets h itself)."""
         S = self.system
         pt = S._sample_time(rng)
         v = self.direction * rng.uniform(0.3, 1.5)
@@ -423,7 +432,23 @@ class Reduction:
                 pt[S.qd[c]] = mpmath.mpf(v) * mpmath.mpf(pt[self._qp[c]])
             if energy:
                 pt[self.h] = self._energy_at(pt)
+                pt[self._drawn] = v
+                self._on_surface(pt)
         return pt
+
+    def _on_surface(self, pt):
+        """Put qdot_eps = (1.12) at the point's (q', q, h), and qdot_nu by (1.5); a root
+        that cannot be evaluated there (not real) makes the point unusable (nan)."""
+        S, vs = self.system, self._vstar
+        try:
+            v = evaluate(vs, {s: mpmath.mpf(pt[s]) for s in vs.free_symbols})
+        except (ValueError, ZeroDivisionError, OverflowError, KeyError):
+            v = mpmath.nan
+        if not isinstance(v, mpmath.mpf):
+            v = mpmath.nan
+        pt[self._v] = pt[S.qd[self._eps]] = v
+        for c in self._nus:
+            pt[S.qd[c]] = v * mpmath.mpf(pt[self._qp[c]])
 
     # ----- steps ----------------------------------------------------------
     def _steps(self):
@@ -486,7 +511,7 @@ class Reduction:
                        rf"$\operatorname{{sign}}\dot q_\varepsilon = {self.direction:+d}$",
                        [eq(S.qd[eps], vform)], check_reading(
             "1.12", "the chosen root solves (1.13) and has the sign of the motion; the form "
-            "shown is that root", [vs, self._star(E13), vform], [v, h, vs], self)))
+            "shown is that root", [vs, E13, vform], [self._drawn, h, vs], self)))
         Ovv = self._d(Omv, v)
         for lab, vars_, what in (("1.14", [qp[c] for c in nus], r"q'_\nu"),
                                  ("1.15", [qs[c] for c in sig], r"q_\sigma")):
@@ -498,15 +523,14 @@ class Reduction:
                                       f"{what} + " r"\dot q_\varepsilon\,\Omega_{\dot "
                                       rf"q_\varepsilon {what}}} - \partial\Omega/\partial {what}"
                                       " = 0$ at (1.12)",
-                                      [self._star(self._chain(v * Ovv, vs, z)
-                                                  + v * self._d(Omv, z) - self._d(Om, z))
-                                       for z in vars_], smp)))
+                                      [self._chain(v * Ovv, vs, z) + v * self._d(Omv, z)
+                                       - self._d(Om, z) for z in vars_], smp, exact=False)))
         lform = lstar_form(self)
         st.append(Step("1.16", r"the reduced Lagrangian $L^* = \partial\Omega/\partial\dot "
                        r"q_\varepsilon$ at (1.12)", [eq(LSTAR, lform)], check_reading(
             "1.16", r"$L^*$ equals $\partial\Omega/\partial\dot q_\varepsilon$ with "
             r"$\dot q_\varepsilon$ from (1.12); the form shown is $L^*$", [Ls, lform],
-            [self._star(Omv), Ls], self)))
+            [Omv, Ls], self)))
         for lab, vars_, what in (("1.17", [qp[c] for c in nus], r"q'_\nu"),
                                  ("1.18", [qs[c] for c in sig], r"q_\sigma")):
             st.append(Step(lab, rf"$\partial L^*/\partial {what}$ by the chain rule",
@@ -516,18 +540,18 @@ class Reduction:
                 r"q_\varepsilon}\,\partial\dot q_\varepsilon/\partial " f"{what} + "
                 rf"\Omega_{{\dot q_\varepsilon {what}}}$",
                 [self._d(Ls, z) for z in vars_],
-                [self._star(self._chain(Ovv, vs, z) + self._d(Omv, z)) for z in vars_], smp)))
+                [self._chain(Ovv, vs, z) + self._d(Omv, z) for z in vars_], smp, exact=False)))
         st.append(Step("1.19", "from (1.14) and (1.17)",
                        [eq(d("L^*", qp[c]), self._d(Ls, qp[c])) for c in nus], check_identity(
             "1.19", r"$\partial L^*/\partial q'_\nu = (1/\dot q_\varepsilon)\,\partial\Omega/"
             r"\partial q'_\nu$", [self._d(Ls, qp[c]) for c in nus],
-            [self._star(self._d(Om, qp[c]) / v) for c in nus], smp)))
+            [self._d(Om, qp[c]) / v for c in nus], smp, exact=False)))
         st.append(Step("1.20", "from (1.15) and (1.18)",
                        [eq(d("L^*", qs[c]), self._d(Ls, qs[c])) for c in sig], check_identity(
             "1.20", r"$\partial L^*/\partial q_\sigma = (1/\dot q_\varepsilon)\,\partial\Omega/"
             r"\partial q_\sigma$ (the OCR prints $1/\dot q_\sigma$)",
             [self._d(Ls, qs[c]) for c in sig],
-            [self._star(self._d(Om, qs[c]) / v) for c in sig], smp)))
+            [self._d(Om, qs[c]) / v for c in sig], smp, exact=False)))
         st.append(Step("1.21", "with (1.8) and (1.9)", lambda: [
             eq(LS(qp[c]), partial("L̃", r"\tilde{L}", S.qd[c])) for c in nus] + [
             eq(LS(qs[c]), partial("L̃", r"\tilde{L}", qs[c]) / v) for c in sig], check_identity(
@@ -535,8 +559,8 @@ class Reduction:
             r"$\partial L^*/\partial q_\sigma = (1/\dot q_\varepsilon)\,\partial\tilde L/"
             r"\partial q_\sigma$",
             [self._d(Ls, qp[c]) for c in nus] + [self._d(Ls, qs[c]) for c in sig],
-            [self._star(self._sub15(self._d(Lt, S.qd[c]))) for c in nus]
-            + [self._star(self._sub15(self._d(Lt, qs[c])) / v) for c in sig], smp)))
+            [self._sub15(self._d(Lt, S.qd[c])) for c in nus]
+            + [self._sub15(self._d(Lt, qs[c])) / v for c in sig], smp, exact=False)))
         st += self._constraint_steps()
         st += self._equation_steps()
         return st
@@ -601,14 +625,15 @@ class Reduction:
     def _equation_steps(self):
         S, smp = self.system, self._sample
         nus, eps = self._nus, self._eps
-        vs = self._vstar
+        vs, v = self._vstar, self._v
+        # (1.4) along a path of (1.26): qdot_eps = (1.12) and qdot_nu = qdot_eps q'_nu are
+        # the sampled points' own (``_sample``); the accelerations are replaced at each
+        # point (``at``), vs d/dq_eps(vs) and its product with q' plus qdot_eps^2 q''
         vdot = vs * self._D(vs)
-        sub = {S.qd[eps]: vs, S.qdd[eps]: vdot}
+        sub = {S.qdd[eps]: vdot}
         for c in nus:
-            sub[S.qd[c]] = vs * self._qp[c]
-            sub[S.qdd[c]] = vdot * self._qp[c] + vs**2 * self._qpp[c]
+            sub[S.qdd[c]] = vdot * self._qp[c] + v**2 * self._qpp[c]
         eom = dict(zip(S.independent_coordinates, S._eom()))
-        at = {}                     # one memo: the equations share most of their pieces
         forms = whittaker_forms(self)
         st = [Step("1.26", r"the generalized Whittaker equations, one per $q_\nu$, each "
                    r"derivative carried out but $d/d" + sp.latex(self.independent) + "$",
@@ -616,13 +641,13 @@ class Reduction:
                        "1.26", r"$\dot q_\varepsilon$ times (1.26) is the $\nu$-th equation of "
                        "(1.4) on the energy surface (1.12); the form shown is (1.26)",
                        [vs * e for e in self._eqs] + forms,
-                       [substitute(eom[c], sub, at) for c in nus] + self._eqs, self))]
+                       [eom[c] for c in nus] + self._eqs, self, at=sub))]
         if S.dependent_coordinates:
             st.append(self._momentum_step())
         self._accelerations()       # (1.26) must be solvable for q''
         tidy_acc = self._tidy_accelerations()
         cleared = cleared_forms(self)
-        on, at_q = dict(tidy_acc), {}
+        on = dict(tidy_acc)
         title = r"$q''_\nu$ solved from (1.26), and (1.26) cleared of denominators"
         if len(cleared) < len(nus):
             title += (" (where $q''_\\nu$ is small enough to read as one fraction; "
@@ -631,8 +656,7 @@ class Reduction:
                        + ["(1.26) cleared of denominators:" if cleared else ""][:len(cleared)]
                        + [eq(c, 0) for c in cleared], check_zero(
                            "1.26b", r"(1.26) and the cleared form vanish at the $q''_\nu$ shown",
-                           [substitute(e, on, at_q) for e in self._eqs]
-                           + [substitute(c, on, at_q) for c in cleared], smp)))
+                           list(self._eqs) + cleared, smp, at=on)))
         if S.is_holonomic:
             st.append(self._step_127())
         x = self.independent

@@ -74,6 +74,9 @@ class Check:
     #: {node: its definition}: a node of ``lhs`` or ``rhs`` (such as an unevaluated
     #: d/dx) that was evaluated as the expression it stands for (empty: none)
     definitions: dict = field(default_factory=dict, repr=False, compare=False)
+    #: {symbol: expression}: the sides were evaluated with each symbol replaced by its
+    #: expression (``check_identity``'s ``at``; empty: none)
+    at: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def status(self) -> str:
@@ -484,8 +487,12 @@ def _vector(e, memo, prec):
         e = known[1]
     v = memo.get(e)
     if v is None:
+        link = memo.get(_BASE)
         try:
-            v = _vector_compute(e, memo, prec, memo[_WIDTH])
+            if link is not None and not link[1].involves(e):
+                v = _vector(e, link[0], prec)       # the same value as at the base points
+            else:
+                v = _vector_compute(e, memo, prec, memo[_WIDTH])
         except RecursionError:
             raise Unevaluable("an expression too deeply nested to evaluate")
         memo[e] = v
@@ -493,6 +500,7 @@ def _vector(e, memo, prec):
 
 
 _WIDTH = object()          # the block memo's entry for its number of points
+_BASE = object()           # a derived block's entry: (the base block, the _Derived points)
 
 
 def _fold(op, vecs, prec):
@@ -624,6 +632,15 @@ class _Points:
             self.singles.append(_block_of([self.raws[len(self.singles)]]))
         return self.singles[i]
 
+    def derived(self, at):
+        """These points with the symbols of ``at`` set to their expressions' values
+        (:class:`_Derived`), one per ``at``."""
+        key = tuple(at.items())
+        table = self.__dict__.setdefault("_derived", {})
+        if key not in table:
+            table[key] = _Derived(self, at)
+        return table[key]
+
     def block(self):
         """The memo of the vectors at points 0 .. POINTS - 1 (:func:`_vector`), made with
         the sampled values; None when the points do not all give the same symbols."""
@@ -631,6 +648,69 @@ class _Points:
             self[POINTS - 1]
             self._block = _block_of(self.raws[:POINTS])
         return self._block
+
+
+class _Derived:
+    """The points of ``base`` (a :class:`_Points`) with each symbol of ``at`` ({symbol:
+    expression}) given the value of its expression there: a substitution carried out
+    at evaluation, without the substituted expression being built.  A node free of
+    those symbols has its value at the base points, taken from (or added to) the base
+    memo; only the nodes that involve them are evaluated again."""
+
+    def __init__(self, base, at):
+        self.base, self.at, self.symbols = base, dict(at), frozenset(at)
+        self.points, self.raws, self.singles, self._involves = [], [], [], {}
+
+    def involves(self, e):
+        """Whether ``e`` contains a symbol of ``at`` (remembered per node)."""
+        r = self._involves.get(e)
+        if r is None:
+            r = self._involves[e] = e in self.symbols or any(self.involves(a) for a in e.args)
+        return r
+
+    def _at_base(self, x, i):
+        """The value (an mpf or mpc) of ``x`` at base point ``i``."""
+        base = self.base
+        if i < POINTS and base.block() is not None:
+            return _at(x, _vector(x, base.block(), mpmath.mp.prec), i, base)
+        return _value(x, base[i], base.raw(i), mpmath.mp.prec)
+
+    def __getitem__(self, i):
+        while len(self.points) <= i:
+            j = len(self.points)
+            pt = {k: v for k, v in self.base[j].items() if isinstance(k, sp.Symbol)}
+            with mpmath.workdps(DPS):
+                for s_, x in self.at.items():
+                    try:
+                        pt[s_] = self._at_base(x, j)
+                    except _EVAL_ERRORS:
+                        pt[s_] = mpmath.nan        # the substitution fails here: unusable
+            self.points.append(pt)
+            self.raws.append({s_: v._mpf_ if isinstance(v, mpmath.mpf) else _NOT_RAW
+                              for s_, v in pt.items()})
+        return self.points[i]
+
+    def raw(self, i):
+        """The block of width 1 of point ``i``, linked to the base's (:func:`_raw`)."""
+        self[i]
+        while len(self.singles) <= i:
+            k = len(self.singles)
+            single = _block_of([self.raws[k]])
+            single[_BASE] = (self.base.raw(k), self)
+            self.singles.append(single)
+        return self.singles[i]
+
+    def block(self):
+        """The vectors at points 0 .. POINTS - 1, linked to the base block."""
+        if not hasattr(self, "_block"):
+            self[POINTS - 1]
+            self._block = None if self.base.block() is None else _block_of(self.raws[:POINTS])
+            if self._block is not None:
+                self._block[_BASE] = (self.base.block(), self)
+        return self._block
+
+    def derived(self, at):
+        return _Derived(self.base, {**self.at, **at})
 
 
 _SHARED = []
@@ -671,9 +751,11 @@ def _points(sample, seed):
     return table[key]
 
 
-def _numeric(lhs, rhs, sample, points, seed, definitions=None):
+def _numeric(lhs, rhs, sample, points, seed, definitions=None, at=None):
     """Largest relative residual of lhs - rhs over random points, and the count."""
     pts = _points(sample, seed)
+    if at:
+        pts = pts.derived(at)
     _canonical(list(lhs) + list(rhs), definitions)
     try:
         return _residuals(lhs, rhs, pts, points)
@@ -744,7 +826,7 @@ def largest_value(expr, sample, points=POINTS, seed=0):
 
 
 def check_identity(label, claim, lhs, rhs, sample, *, exact=True, points=POINTS, seed=0,
-                   definitions=None):
+                   definitions=None, at=None):
     """Check ``lhs == rhs`` (expressions or equal-length lists of them).
 
     ``sample(rng)`` returns a dict {Symbol: float} of one random admissible
@@ -758,7 +840,15 @@ def check_identity(label, claim, lhs, rhs, sample, *, exact=True, points=POINTS,
     definition for the later checks too: define only nodes that mean the same
     everywhere (a d/dx of a given function, not a symbol that other checks sample).
 
-    >>> x = sp.Symbol("x")
+    ``at``, a dict {symbol: expression}, checks the sides with each such symbol
+    replaced by its expression (``lhs.xreplace(at) == rhs.xreplace(at)``), the
+    replacement carried out at evaluation: at each point the symbol takes the value
+    of its expression there, and only the nodes that involve it are evaluated again
+    (the substituted sides, often large, are never built; the check is numeric).
+
+    >>> x, y = sp.symbols("x y")
+    >>> check_zero("at", "", x**2 - y, lambda rng: {x: 0.7, y: 0.1}, at={y: x**2}).holds
+    True
     >>> d = sp.Function("D")(x)
     >>> check_identity("d", "", d + 1, sp.cos(x), lambda rng: {x: 0.3},
     ...                definitions={d: sp.cos(x) - 1}).detail
@@ -773,7 +863,10 @@ def check_identity(label, claim, lhs, rhs, sample, *, exact=True, points=POINTS,
         definitions = {}
     elif definitions:
         exact = False          # the sides as they stand are not the expressions meant
-    what = dict(lhs=tuple(lhs), rhs=tuple(rhs), sample=sample, definitions=definitions)
+    if at:
+        exact = False          # nor are they with symbols still to be replaced
+    what = dict(lhs=tuple(lhs), rhs=tuple(rhs), sample=sample, definitions=definitions,
+                at=dict(at or {}))
     if len(lhs) != len(rhs):
         return Check(label, claim, False, "exact", f"{len(lhs)} left sides, {len(rhs)} right sides",
                      **what)
@@ -782,7 +875,7 @@ def check_identity(label, claim, lhs, rhs, sample, *, exact=True, points=POINTS,
         if ways:
             return Check(label, claim, True, "exact", ", ".join(sorted(set(ways))), **what)
     try:
-        worst, used = _numeric(lhs, rhs, sample, points, seed, definitions)
+        worst, used = _numeric(lhs, rhs, sample, points, seed, definitions, at)
     except Unevaluable as err:
         return Check(label, claim, None, "unverified", f"not evaluable numerically: {err}", **what)
     detail = f"mpmath at {DPS} digits"
