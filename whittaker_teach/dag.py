@@ -154,17 +154,18 @@ def _resorted(e, args):
     return e.func(*args)
 
 
-def bottom_up(expr, f):
+def bottom_up(expr, f, memo=None):
     """``expr.replace(lambda e: True, f)``: ``f`` applied to every node once its arguments
     are rebuilt (``f`` returns the node or its replacement; as in ``replace``, a node is
     rebuilt only if an argument changed, and replaced only by something unequal), each
-    distinct subexpression once (``replace`` pays again for every repetition).
+    distinct subexpression once (``replace`` pays again for every repetition).  ``memo``
+    (a dict) may be shared by calls with the same ``f``.
 
     >>> x, y = sp.symbols("x y")
     >>> bottom_up(sp.sin(x*y) + x*y, lambda e: e.args[0] if e.is_Mul else e)
     x + sin(x)
     """
-    memo = {}
+    memo = {} if memo is None else memo
 
     def walk(e):
         r = memo.get(e)

@@ -27,7 +27,7 @@ from .dag import bottom_up, expanded_terms, instances, power, substitute, tree_s
 from .rewrite import RATIONAL_OPS_LIMIT, _ops_above, collected, factored, pythagoras
 from .verify import check_identity, expand_may_equal
 
-__all__ = ["TotalD", "powers_combined", "tidy", "evaluate", "carried_out", "check_reading",
+__all__ = ["TotalD", "TidyMemo", "powers_combined", "tidy", "evaluate", "carried_out", "check_reading",
            "velocity_form", "lstar_form", "momentum_forms", "whittaker_forms", "cleared_forms", "nielsen_forms",
            "total_derivative_form"]
 
@@ -61,13 +61,14 @@ class TotalD(sp.Function):
 BASE_EXPAND_LIMIT = 200
 
 
-def powers_combined(expr):
+def powers_combined(expr, memo=None):
     """In every product, powers of the same base (equal after ``expand``) are merged:
     sqrt(A)*A -> A**(3/2).  Exact: x**a * x**b = x**(a + b) for every base with the
     principal branch.  Only bases of at most ``BASE_EXPAND_LIMIT`` nodes, whose
     expansion is estimated at most as many terms, are expanded to compare them
     (others are compared as written, such as 2h - (1 + x/3 + theta/5)**40): the cost
-    stays bounded on a large system.
+    stays bounded on a large system.  ``memo`` (a :class:`TidyMemo`) is shared by the
+    calls of one reduction, whose pieces share most of their subexpressions.
 
     >>> a, b = sp.symbols("a b")
     >>> A = a**2 + b
@@ -92,8 +93,9 @@ def powers_combined(expr):
         if len(order) == len(sp.Mul.make_args(m)):
             return m
         return sp.Mul(*[sp.Pow(groups[k][0], groups[k][1]) for k in order])
-    small = {}                  # sum -> whether it is small enough to expand (once each)
-    return bottom_up(expr, lambda e: merge(e) if isinstance(e, sp.Mul) else e)
+    memo = TidyMemo() if memo is None else memo
+    small = memo.small          # sum -> whether it is small enough to expand (once each)
+    return bottom_up(expr, lambda e: merge(e) if isinstance(e, sp.Mul) else e, memo.powers)
 
 
 def _small_sum(b, small):
@@ -124,36 +126,103 @@ def _expansion_keys(bases, small=None):
 TIDY_SIZE_LIMIT = 1500
 
 
-def tidy(expr, symbols=()):
+class TidyMemo:
+    """What :func:`tidy` learns about subexpressions, kept for the pieces of one
+    reduction (they share most of their subexpressions: the same roots of the energy
+    and of the mass in every derivative of L*), so that each is examined once: its tree
+    size (capped), whether its powers are all integer, whether it holds a literal
+    sin^2 + cos^2, its collected form, and :func:`powers_combined`'s walk."""
+
+    def __init__(self):
+        self.sizes, self.integral, self.pythagorean = {}, {}, {}
+        self.collected, self.powers, self.small = {}, {}, {}
+
+    def size(self, e, limit):
+        """``tree_size(e, limit)`` for ``e`` up to ``limit + 1`` nodes (the tree size,
+        capped, counted once per distinct subexpression)."""
+        r = self.sizes.get(e)
+        if r is None:
+            r = 1
+            for a in e.args:
+                r += self.size(a, limit)
+                if r > limit:
+                    break
+            r = self.sizes[e] = min(r, limit + 1)
+        return r
+
+    def integer_powers(self, e):
+        """Whether every power in ``e`` has an integer exponent."""
+        r = self.integral.get(e)
+        if r is None:
+            r = (not isinstance(e, sp.Pow) or e.exp.is_Integer) and all(
+                self.integer_powers(a) for a in e.args)
+            self.integral[e] = r
+        return r
+
+    def has_pythagoras(self, e):
+        """Whether ``e`` holds a sum sin(u)**2 + cos(u)**2 (what ``pythagoras`` replaces)."""
+        r = self.pythagorean.get(e)
+        if r is None:
+            r = _pythagorean_sum(e) or any(self.has_pythagoras(a) for a in e.args)
+            self.pythagorean[e] = r
+        return r
+
+
+def _pythagorean_sum(e):
+    if not (isinstance(e, sp.Add) and len(e.args) == 2):
+        return False
+    a, b = e.args
+    if not all(isinstance(t, sp.Pow) and t.exp == 2 for t in (a, b)):
+        return False
+    fa, fb = a.base, b.base
+    return ({type(fa), type(fb)} == {sp.sin, sp.cos} and fa.args == fb.args)
+
+
+def tidy(expr, symbols=(), memo=None):
     """The readable form of one piece, without expanding it: every polynomial factor
     (a sum free of roots) collected on ``symbols`` with factored coefficients
     (``rewrite.collected``), sin^2 + cos^2 = 1, powers of the same base merged.
-    A piece of more than ``TIDY_SIZE_LIMIT`` nodes is returned as it is."""
+    A piece of more than ``TIDY_SIZE_LIMIT`` nodes is returned as it is.  ``memo``, a
+    :class:`TidyMemo`, may be shared by the pieces of one reduction.
+
+    >>> a, b, t = sp.symbols("a b theta")
+    >>> tidy(sp.sqrt(a + b)*(a*b*sp.tan(t)**2 + a*b)*(a + b)*(sp.sin(t)**2 + sp.cos(t)**2), [b])
+    a*b*(a + b)**(3/2)*(tan(theta)**2 + 1)
+    """
     expr = sp.sympify(expr)
-    if tree_size(expr, TIDY_SIZE_LIMIT) > TIDY_SIZE_LIMIT:
+    memo = TidyMemo() if memo is None else memo
+    if memo.size(expr, TIDY_SIZE_LIMIT) > TIDY_SIZE_LIMIT:
         return expr
+    key = tuple(symbols)
+
     def factor_of(f):
         if isinstance(f, sp.Pow) and isinstance(f.base, sp.Add) and f.exp.is_Integer:
             return sp.Pow(factor_of(f.base), f.exp)
-        if isinstance(f, sp.Add) and all(p.exp.is_Integer for p in instances(f, sp.Pow)):
-            return collected(f, list(symbols))
+        if isinstance(f, sp.Add) and memo.integer_powers(f):
+            r = memo.collected.get((f, key))
+            if r is None:
+                r = memo.collected[f, key] = collected(f, list(symbols))
+            return r
         return f
 
     def term(t):
         return sp.Mul(*[factor_of(f) for f in sp.Mul.make_args(t)])
-    expr = sp.sympify(expr)
-    if isinstance(expr, sp.Add) and all(p.exp.is_Integer for p in instances(expr, sp.Pow)):
-        return powers_combined(factor_of(expr))             # a polynomial: collect it whole
-    return powers_combined(pythagoras(sp.Add(*[term(t) for t in sp.Add.make_args(expr)])))
+    if isinstance(expr, sp.Add) and memo.integer_powers(expr):
+        return powers_combined(factor_of(expr), memo)       # a polynomial: collect it whole
+    out = sp.Add(*[term(t) for t in sp.Add.make_args(expr)])
+    if memo.has_pythagoras(out):
+        out = pythagoras(out)
+    return powers_combined(out, memo)
 
 
 def _tidy(red, expr, symbols):
     """``tidy(expr, symbols)``, once per piece and reduction: the readings of (1.26), (2.1)
-    and (2.4) share many pieces (the same derivative of L* tidied in each)."""
+    and (2.4) share many pieces (the same derivative of L* tidied in each), and the
+    pieces share one :class:`TidyMemo`."""
     memo = red._cache.setdefault("tidy", {})
     key = (expr, tuple(symbols))
     if key not in memo:
-        memo[key] = tidy(expr, symbols)
+        memo[key] = tidy(expr, symbols, red._cache.setdefault("tidy_memo", TidyMemo()))
         red._cache.setdefault("untidy", {}).setdefault(memo[key], expr)
     return memo[key]
 
