@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import sympy as sp
 
+from .dag import diff
 from .errors import ModelError, ModelTypeError
 
 __all__ = ["exact_rationals", "constraint_expressions", "solved_velocities",
@@ -79,10 +80,15 @@ def solved_velocities(constraints, velocities, t):
         if not any(f.has(v) for v in velocities):
             raise ModelError(f"the constraint {f} = 0 contains none of the dependent "
                              f"velocities {names}: it cannot be solved for them (1.1)")
-    J = sp.Matrix(constraints).jacobian(velocities)
-    if not J.has(*velocities):                       # linear in the dependent velocities
-        zero = {v: 0 for v in velocities}
-        rest = sp.Matrix([f.xreplace(zero) for f in constraints])
+    # the velocities as plain symbols while differentiating (SymPy differentiates with
+    # respect to a Derivative by substituting a symbol for it at every call)
+    as_symbol = {v: sp.Dummy() for v in velocities}
+    back = {d: v for v, d in as_symbol.items()}
+    plain = [f.xreplace(as_symbol) for f in constraints]
+    J = sp.Matrix([[diff(f, as_symbol[v]) for v in velocities] for f in plain])
+    if not J.has(*back):                             # linear in the dependent velocities
+        zero = {d: 0 for d in back}
+        rest = sp.Matrix([f.xreplace(zero) for f in plain])
         g = len(velocities)
         if all(J[i, j] == 0 for i in range(g) for j in range(g) if i != j):   # one each
             if any(J[i, i] == 0 for i in range(g)):

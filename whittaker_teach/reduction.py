@@ -42,7 +42,7 @@ from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
                       velocity_form, whittaker_forms)
 from .rewrite import collected, rational_parts
 from .steps import Derivation, Report, Step, eq, notation, partial
-from .verify import DPS, check_identity, check_zero, evaluate, shared_points
+from .verify import DPS, check_identity, check_zero, shared_points, value_at
 
 __all__ = ["Reduction"]
 
@@ -186,8 +186,8 @@ class Reduction:
         self._to_public = {}
         for c, f in zip(self._nus, self.coordinates):
             self._to_public[S.q[c]] = f
-            self._to_public[self._qp[c]] = f.diff(x)
-            self._to_public[self._qpp[c]] = f.diff(x, 2)
+            self._to_public[self._qp[c]] = sp.Derivative(f, x)        # f.diff(x), unwalked
+            self._to_public[self._qpp[c]] = sp.Derivative(f, (x, 2))
         self._to_internal = {v: k for k, v in self._to_public.items()}
 
     def to_public(self, expr):
@@ -405,9 +405,8 @@ class Reduction:
 
     # ----- random admissible points --------------------------------------
     def _energy_at(self, pt):
-        """The energy (1.11) at a sampled point (``verify.evaluate``: no code generated)."""
-        E = self.system._energy()
-        return evaluate(E, {s: mpmath.mpf(pt[s]) for s in E.free_symbols})
+        """The energy (1.11) at a sampled point (``verify.value_at``: no code generated)."""
+        return value_at(self.system._energy(), pt)
 
     def _sample(self, rng, energy=True):
         """A random point on the energy surface, for the checks.
@@ -441,7 +440,7 @@ class Reduction:
         that cannot be evaluated there (not real) makes the point unusable (nan)."""
         S, vs = self.system, self._vstar
         try:
-            v = evaluate(vs, {s: mpmath.mpf(pt[s]) for s in vs.free_symbols})
+            v = value_at(vs, pt)
         except (ValueError, ZeroDivisionError, OverflowError, KeyError):
             v = mpmath.nan
         if not isinstance(v, mpmath.mpf):

@@ -265,9 +265,9 @@ class ChaplyginSystem:
         self._all_symbols = [*self.q.values(), *self.qd.values(), *self.qdd.values()]
         self._names = {s.name for s in self._all_symbols}
         self._to_internal = {}
-        for c in self.coordinates:
-            self._to_internal[c.diff(self._t, 2)] = self.qdd[c]
-            self._to_internal[c.diff(self._t)] = self.qd[c]
+        for c in self.coordinates:      # (Derivative(c, t) is c.diff(t), without diff's walk)
+            self._to_internal[sp.Derivative(c, (self._t, 2))] = self.qdd[c]
+            self._to_internal[sp.Derivative(c, self._t)] = self.qd[c]
             self._to_internal[c] = self.q[c]
         self._to_public = {v: k for k, v in self._to_internal.items()}
 
