@@ -42,7 +42,8 @@ from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
                       velocity_form, whittaker_forms)
 from .rewrite import collected, rational_parts
 from .steps import Derivation, Report, Step, eq, notation, partial
-from .verify import DPS, check_identity, check_zero, shared_points, value_at
+from .verify import (DPS, EXACT_SIZE_LIMIT, check_identity, check_zero, shared_points,
+                     value_at)
 
 __all__ = ["Reduction"]
 
@@ -455,6 +456,24 @@ class Reduction:
         steps = list(self.system.steps) + self._reduction_steps() + nielsen_steps(self)
         return steps
 
+    def _check_at_112(self, label, claim, sides, starred):
+        """Check ``sides`` at (1.12) (the paper's ``*``: qdot_eps = qdot_eps(q', q, h)) equal
+        ``starred``, functions of q', q and h.  Small sides are starred as built, so that
+        an exact attempt may decide; larger ones are evaluated as they stand at the
+        sampled points, which lie on the energy surface (:meth:`_sample`): their value
+        there is the starred one's, and no substituted expression is built."""
+        sides, starred = list(sides), list(starred)
+        size, small = 0, True
+        for e in sides + starred:
+            size += tree_size(e, EXACT_SIZE_LIMIT)
+            if size > EXACT_SIZE_LIMIT:
+                small = False
+                break
+        if small:
+            return check_identity(label, claim, starred, [self._star(e) for e in sides],
+                                  self._sample)
+        return check_identity(label, claim, starred, sides, self._sample, exact=False)
+
     def _reduction_steps(self):
         S, v, h, smp = self.system, self._v, self.h, self._sample
         eps, nus, sig = self._eps, self._nus, S.independent_coordinates
@@ -517,13 +536,15 @@ class Reduction:
             st.append(Step(lab, f"(1.13) differentiated with respect to ${what}$",
                            lambda vars_=vars_: [eq(v * OM(v, v) * XD(z) + v * OM(v, z) - OM(z), 0)
                                                 for z in vars_],
-                           check_zero(lab, r"$\dot q_\varepsilon\,\Omega_{\dot q_\varepsilon"
-                                      r"\dot q_\varepsilon}\,\partial\dot q_\varepsilon/\partial "
-                                      f"{what} + " r"\dot q_\varepsilon\,\Omega_{\dot "
-                                      rf"q_\varepsilon {what}}} - \partial\Omega/\partial {what}"
-                                      " = 0$ at (1.12)",
-                                      [self._chain(v * Ovv, vs, z) + v * self._d(Omv, z)
-                                       - self._d(Om, z) for z in vars_], smp, exact=False)))
+                           self._check_at_112(lab, r"$\dot q_\varepsilon\,\Omega_{\dot "
+                                              r"q_\varepsilon\dot q_\varepsilon}\,\partial\dot "
+                                              rf"q_\varepsilon/\partial {what} + "
+                                              r"\dot q_\varepsilon\,\Omega_{\dot "
+                                              rf"q_\varepsilon {what}}} - \partial\Omega/"
+                                              rf"\partial {what} = 0$ at (1.12)",
+                                              [self._chain(v * Ovv, vs, z) + v * self._d(Omv, z)
+                                               - self._d(Om, z) for z in vars_],
+                                              [sp.S.Zero] * len(vars_))))
         lform = lstar_form(self)
         st.append(Step("1.16", r"the reduced Lagrangian $L^* = \partial\Omega/\partial\dot "
                        r"q_\varepsilon$ at (1.12)", [eq(LSTAR, lform)], check_reading(
@@ -534,32 +555,31 @@ class Reduction:
                                  ("1.18", [qs[c] for c in sig], r"q_\sigma")):
             st.append(Step(lab, rf"$\partial L^*/\partial {what}$ by the chain rule",
                            lambda vars_=vars_: [eq(LS(z), OM(v, v) * XD(z) + OM(v, z))
-                                                for z in vars_], check_identity(
+                                                for z in vars_], self._check_at_112(
                 lab, rf"$\partial L^*/\partial {what} = \Omega_{{\dot q_\varepsilon\dot "
                 r"q_\varepsilon}\,\partial\dot q_\varepsilon/\partial " f"{what} + "
                 rf"\Omega_{{\dot q_\varepsilon {what}}}$",
-                [self._d(Ls, z) for z in vars_],
-                [self._chain(Ovv, vs, z) + self._d(Omv, z) for z in vars_], smp, exact=False)))
+                [self._chain(Ovv, vs, z) + self._d(Omv, z) for z in vars_],
+                [self._d(Ls, z) for z in vars_])))
         st.append(Step("1.19", "from (1.14) and (1.17)",
-                       [eq(d("L^*", qp[c]), self._d(Ls, qp[c])) for c in nus], check_identity(
+                       [eq(d("L^*", qp[c]), self._d(Ls, qp[c])) for c in nus], self._check_at_112(
             "1.19", r"$\partial L^*/\partial q'_\nu = (1/\dot q_\varepsilon)\,\partial\Omega/"
-            r"\partial q'_\nu$", [self._d(Ls, qp[c]) for c in nus],
-            [self._d(Om, qp[c]) / v for c in nus], smp, exact=False)))
+            r"\partial q'_\nu$", [self._d(Om, qp[c]) / v for c in nus],
+            [self._d(Ls, qp[c]) for c in nus])))
         st.append(Step("1.20", "from (1.15) and (1.18)",
-                       [eq(d("L^*", qs[c]), self._d(Ls, qs[c])) for c in sig], check_identity(
+                       [eq(d("L^*", qs[c]), self._d(Ls, qs[c])) for c in sig], self._check_at_112(
             "1.20", r"$\partial L^*/\partial q_\sigma = (1/\dot q_\varepsilon)\,\partial\Omega/"
             r"\partial q_\sigma$ (the OCR prints $1/\dot q_\sigma$)",
-            [self._d(Ls, qs[c]) for c in sig],
-            [self._d(Om, qs[c]) / v for c in sig], smp, exact=False)))
+            [self._d(Om, qs[c]) / v for c in sig], [self._d(Ls, qs[c]) for c in sig])))
         st.append(Step("1.21", "with (1.8) and (1.9)", lambda: [
             eq(LS(qp[c]), partial("L̃", r"\tilde{L}", S.qd[c])) for c in nus] + [
-            eq(LS(qs[c]), partial("L̃", r"\tilde{L}", qs[c]) / v) for c in sig], check_identity(
+            eq(LS(qs[c]), partial("L̃", r"\tilde{L}", qs[c]) / v) for c in sig], self._check_at_112(
             "1.21", r"$\partial L^*/\partial q'_\nu = \partial\tilde L/\partial\dot q_\nu$ and "
             r"$\partial L^*/\partial q_\sigma = (1/\dot q_\varepsilon)\,\partial\tilde L/"
             r"\partial q_\sigma$",
-            [self._d(Ls, qp[c]) for c in nus] + [self._d(Ls, qs[c]) for c in sig],
             [self._sub15(self._d(Lt, S.qd[c])) for c in nus]
-            + [self._sub15(self._d(Lt, qs[c])) / v for c in sig], smp, exact=False)))
+            + [self._sub15(self._d(Lt, qs[c])) / v for c in sig],
+            [self._d(Ls, qp[c]) for c in nus] + [self._d(Ls, qs[c]) for c in sig])))
         st += self._constraint_steps()
         st += self._equation_steps()
         return st

@@ -151,3 +151,27 @@ def test_block_and_point_by_point_checks_agree(monkeypatch):
     single = check_identity("b", "", lhs, rhs, smp, exact=False, seed=2)
     assert block.points == single.points == 6 and block.holds and single.holds
     assert block.max_residual == single.max_residual > 0
+
+
+def test_at_replaces_symbols_at_evaluation():
+    """``at`` checks the sides with symbols replaced by expressions, without building
+    them: right and wrong replacements, numeric even where the sides are equal as built,
+    and the node free of the replaced symbol taken from the base points' values."""
+    from whittaker_teach import verify
+    y = sp.Symbol("y")
+
+    def pts(rng):
+        return {x: rng.uniform(0.1, 1.2), y: rng.uniform(2, 3)}
+    big = sp.sin(x)**3 + sp.exp(x)
+    with verify.shared_points():
+        c = check_identity("at", "y = x**2", big * x**2, big * y, pts, at={y: x**2})
+        assert c.holds and c.method == "numeric" and c.at == {y: x**2}
+        assert check_zero("at", "y = x**2 + 1e-9", x**2 - y, pts,
+                          at={y: x**2 + sp.Float(1e-9)}).holds is False
+        assert check_zero("no at", "y is not x**2", x**2 - y, pts, exact=False).holds is False
+        base = verify._points(pts, 0)
+        derived = base.derived({y: x**2})
+        block, dblock = base.block(), derived.block()
+        assert dblock[big] is block[big]          # one evaluation, shared
+        assert derived.involves(x**2 - y) and not derived.involves(big)
+        assert [float(v) for v in (derived[0][y], base[0][x]**2)] == [float(base[0][x]**2)] * 2
