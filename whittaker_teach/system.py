@@ -51,7 +51,7 @@ from .linear import lu_solve
 from .reduction import Reduction
 from .rewrite import collected, rational
 from .steps import Derivation, Report, Step, eq
-from .verify import DPS, Unevaluable, check_identity, check_zero, evaluate, shared_points
+from .verify import DPS, At, Unevaluable, check_identity, check_zero, shared_points
 
 __all__ = ["ChaplyginSystem"]
 
@@ -129,13 +129,14 @@ PIVOT_BY_VALUE_NODES = 2000
 
 def _zero_at(point):
     """An ``iszerofunc`` for SymPy's LU: True for 0 and for an entry whose value at
-    ``point`` (a memo of values, 40 digits) is 0 to half the digits, False otherwise."""
+    ``point`` (a :class:`.verify.At`, 40 digits) is 0 to half the digits, False
+    otherwise."""
     def iszero(x):
         if x.is_Number:
             return x == 0
         try:
             with mpmath.workdps(DPS):
-                return not abs(evaluate(x, point)) > mpmath.mpf(10) ** (-DPS // 2)
+                return not abs(point(x)) > mpmath.mpf(10) ** (-DPS // 2)
         except (ZeroDivisionError, ValueError, OverflowError, TypeError):
             return True              # not a usable pivot at this point
     return iszero
@@ -483,24 +484,22 @@ class ChaplyginSystem:
             raise ModelError(f"singular kinetic energy: {what} is singular (1.4)") from err
 
     def _require_regular(self, M, what, sample):
-        """The values at a sampled point where ``M`` is regular (det far from 0), or
-        ModelError (a singular kinetic energy, 1.4)."""
+        """The values at a sampled point where ``M`` is regular (det far from 0), as a
+        :class:`.verify.At`, or ModelError (a singular kinetic energy, 1.4)."""
         rng = random.Random(7)
         rows = M.tolist()
         with mpmath.workdps(DPS):
             for _ in range(3):
-                memo = {s: mpmath.mpf(v) if isinstance(v, (int, float)) else v
-                        for s, v in sample(rng).items()}
+                at = At(sample(rng))
                 try:
-                    d = mpmath.det(mpmath.matrix([[evaluate(e, memo) for e in row]
-                                                  for row in rows]))
+                    d = mpmath.det(mpmath.matrix([[at(e) for e in row] for row in rows]))
                 except (ZeroDivisionError, ValueError, OverflowError, TypeError):
                     continue
                 except (Unevaluable, KeyError) as err:
                     raise ModelError(f"{what} cannot be evaluated numerically to check that "
                                      f"it is regular (1.4): {err}") from err
                 if abs(d) > mpmath.mpf(10) ** (-DPS // 2):
-                    return memo
+                    return at
         raise ModelError(f"singular kinetic energy: {what} is singular, so the accelerations "
                          "cannot be solved (1.4); is the kinetic energy positive definite in "
                          "the independent velocities?")

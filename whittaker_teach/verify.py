@@ -28,7 +28,7 @@ from mpmath.libmp import ComplexResult, mpf_add, mpf_mul, mpf_pow_int, mpf_sqrt
 from .dag import expanded_terms, substitute, tree_size
 from .polywalk import vanishes
 
-__all__ = ["Check", "check_identity", "check_zero", "evaluate", "value_at", "largest_value",
+__all__ = ["Check", "check_identity", "check_zero", "evaluate", "At", "value_at", "largest_value",
            "shared_points", "DPS", "TOLERANCE"]
 
 #: Working precision (decimal digits) of the numeric checks.
@@ -803,20 +803,39 @@ def _residuals(lhs, rhs, pts, points):
     return worst, used
 
 
+class At:
+    """The values of expressions at one point {symbol: number}, at ``DPS`` digits, by the
+    checks' raw arithmetic where it can (:func:`_raw`), else :func:`evaluate`; the
+    expressions evaluated share the values of their common subexpressions.  A call
+    raises as :func:`evaluate` raises.
+
+    >>> x = sp.Symbol("x")
+    >>> at = At({x: 4})
+    >>> print(at(sp.sqrt(x) + 1), at(sp.sqrt(x) * 3))
+    3.0 6.0
+    """
+
+    def __init__(self, point):
+        with mpmath.workdps(DPS):
+            self.memo = {s: mpmath.mpf(v) if isinstance(v, (int, float)) else v
+                         for s, v in point.items()}
+        self.raw = {s: v._mpf_ if isinstance(v, mpmath.mpf) else _NOT_RAW
+                    for s, v in self.memo.items()}
+
+    def __call__(self, expr):
+        with mpmath.workdps(DPS):
+            return _value(expr, self.memo, self.raw, mpmath.mp.prec)
+
+
 def value_at(expr, point):
     """The value (an mpf, or mpc where it is not real) of ``expr`` at one point
-    {symbol: number}, at ``DPS`` digits, by the checks' raw arithmetic where it can
-    (:func:`_raw`), else :func:`evaluate`; raises as :func:`evaluate` raises.
+    {symbol: number} (:class:`At`).
 
     >>> x = sp.Symbol("x")
     >>> print(value_at(sp.sqrt(x) + 1, {x: 4}))
     3.0
     """
-    with mpmath.workdps(DPS):
-        memo = {s: mpmath.mpf(v) if isinstance(v, (int, float)) else v
-                for s, v in point.items()}
-        raw = {s: v._mpf_ if isinstance(v, mpmath.mpf) else _NOT_RAW for s, v in memo.items()}
-        return _value(expr, memo, raw, mpmath.mp.prec)
+    return At(point)(expr)
 
 
 def largest_value(expr, sample, points=POINTS, seed=0):
