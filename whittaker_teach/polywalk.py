@@ -324,11 +324,22 @@ def _gen_key(g):
     return k
 
 
+#: rings have a multiple of this many generators (the walk's own, then placeholders that
+#: stay at exponent 0): a derivation then builds a few rings instead of one per count of
+#: generators (each new ring costs SymPy about a millisecond of ``exec``)
+RING_STEP = 4
+
+
 def _walker(gens, roots):
     """A :class:`_Walk` over the rationals with ``gens`` in SymPy's own order (the order
-    ``sring`` and ``factor`` choose, so that signs are normalized as theirs are)."""
+    ``sring`` and ``factor`` choose, so that signs are normalized as theirs are), in a
+    ring of ``RING_STEP``-rounded size whose last generators are unused: as the last
+    in the lexicographic order, always at exponent 0, they change neither the leading
+    terms nor the factors."""
     order = sorted(gens, key=_gen_key)
-    return _Walk(_ring(len(order), "QQ"), order, roots)
+    size = -(-max(len(order), 1) // RING_STEP) * RING_STEP
+    order += [sp.Dummy() for _ in range(size - len(order))]
+    return _Walk(_ring(size, "QQ"), order, roots)
 
 
 def factor(expr):
