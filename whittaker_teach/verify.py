@@ -23,7 +23,8 @@ from dataclasses import dataclass, field
 import mpmath
 import sympy as sp
 from mpmath import libmp
-from mpmath.libmp import ComplexResult, mpf_add, mpf_mul, mpf_pow_int, mpf_sqrt
+from mpmath.libmp import (ComplexResult, mpf_add, mpf_mul, mpf_pow_int, mpf_sqrt, mpf_sum,
+                          normalize)
 
 from .dag import expanded_terms, substitute, tree_size
 from .polywalk import vanishes
@@ -422,15 +423,15 @@ def _forget_canonical():
 
 
 def _compute(e, memo):
-    if e.is_Add:
-        out = 0
-        for a in e.args:
-            out += evaluate(a, memo)
-        return out
-    if e.is_Mul:
-        out = 1
-        for a in e.args:
-            out *= evaluate(a, memo)
+    if e.is_Add or e.is_Mul:
+        vals = [evaluate(a, memo) for a in e.args]
+        if all(isinstance(v, mpmath.mpf) for v in vals):    # as the raw path does it
+            raw = (_sum_raw if e.is_Add else _product_raw)([v._mpf_ for v in vals],
+                                                           mpmath.mp.prec)
+            return mpmath.mp.make_mpf(raw)
+        out = vals[0]
+        for v in vals[1:]:
+            out = out + v if e.is_Add else out * v
         return out
     if e.is_Pow:
         b, x = evaluate(e.base, memo), e.exp
@@ -503,23 +504,44 @@ _WIDTH = object()          # the block memo's entry for its number of points
 _BASE = object()           # a derived block's entry: (the base block, the _Derived points)
 
 
+def _sum_raw(xs, prec):
+    """The sum of raw mpf values, rounded once (``mpf_sum``: the terms are added exactly,
+    then rounded to ``prec`` bits), as the sum of a node's terms."""
+    return mpf_sum(xs, prec, "n")
+
+
+def _product_raw(xs, prec):
+    """The product of raw mpf values, rounded once: the mantissas multiplied exactly and
+    the result rounded to ``prec`` bits (one ``normalize`` for the node, not one per
+    factor); with a zero, an infinity or nan among them, ``mpf_mul``'s rules, in order."""
+    sign, man, exp = 0, 1, 0
+    for xsign, xman, xexp, _ in xs:
+        if not xman:
+            out = xs[0]
+            for y in xs[1:]:
+                out = mpf_mul(out, y, prec, "n")
+            return out
+        sign ^= xsign
+        man *= xman
+        exp += xexp
+    return normalize(sign, man, exp, man.bit_length(), prec, "n")
+
+
 def _fold(op, vecs, prec):
-    """``op`` (mpf_add or mpf_mul) folded over the vectors, point by point, in order."""
-    out = vecs[0]
+    """The sum (``op`` mpf_add) or product (mpf_mul) of the vectors, point by point, each
+    rounded once (:func:`_sum_raw`, :func:`_product_raw`)."""
+    kernel = _sum_raw if op is mpf_add else _product_raw
     if any(type(v) is _Marked for v in vecs):
-        out = _Marked(out)
-        for v in vecs[1:]:
-            for i, (x, y) in enumerate(zip(out, v)):
-                if x is _FAIL or y is _FAIL:
-                    out[i] = _FAIL
-                elif x is _NOT_RAW or y is _NOT_RAW:
-                    out[i] = _NOT_RAW
-                else:
-                    out[i] = op(x, y, prec, "n")
+        out = _Marked()
+        for col in zip(*vecs):
+            if any(x is _FAIL for x in col):
+                out.append(_FAIL)
+            elif any(x is _NOT_RAW for x in col):
+                out.append(_NOT_RAW)
+            else:
+                out.append(kernel(col, prec))
         return out
-    for v in vecs[1:]:
-        out = [op(x, y, prec, "n") for x, y in zip(out, v)]
-    return out
+    return [kernel(col, prec) for col in zip(*vecs)]
 
 
 def _map(fn, vec):
