@@ -61,16 +61,29 @@ __all__ = ["ChaplyginSystem"]
 MAX_DEPTH = 30
 
 
-def _check_values(expr, what):
+def _nodes(expr):
+    """The distinct subexpressions of ``expr`` (one walk, a shared subtree once)."""
+    seen, stack = set(), [expr]
+    while stack:
+        e = stack.pop()
+        if e not in seen:
+            seen.add(e)
+            stack.extend(e.args)
+    return seen
+
+
+def _check_values(expr, what, nodes=None):
     """Refuse what the derivation cannot treat as a real function of the coordinates:
-    infinities, NaN, complex coefficients, too deep a nesting."""
-    if expr.has(sp.nan):
+    infinities, NaN, complex coefficients, too deep a nesting (``nodes``: those of
+    ``expr``, if known)."""
+    nodes = _nodes(expr) if nodes is None else nodes
+    if sp.nan in nodes:
         raise ModelError(f"{what} contains nan (not a number): L and the constraints must be "
                          "finite real expressions (1.1)")
-    if expr.has(sp.oo, -sp.oo, sp.zoo):
+    if any(x in nodes for x in (sp.oo, -sp.oo, sp.zoo)):
         raise ModelError(f"{what} contains an infinity (oo, -oo or zoo): L and the constraints must "
                          "be finite real expressions (1.1)")
-    if expr.has(sp.I):
+    if sp.I in nodes:
         raise ModelError(f"{what} contains the imaginary unit I: complex coefficients are not "
                          "allowed, L and the constraints must be real (1.1), (1.11)")
     if max_depth(expr, MAX_DEPTH) > MAX_DEPTH:
@@ -287,21 +300,25 @@ class ChaplyginSystem:
                              "symbols for q and qdot)")
         _check_values(expr, what)
         e = expr.xreplace(self._to_internal)
-        for d in e.atoms(sp.Derivative):
+        nodes = _nodes(e)                  # one walk for the tests below, not one each
+        for d in sorted((n for n in nodes if isinstance(n, sp.Derivative)), key=sp.default_sort_key):
             raise ModelError(f"{what} contains {d.xreplace(self._to_public)}, which is not "
                              "a velocity or acceleration of a listed coordinate")
-        for f in e.atoms(AppliedUndef):
+        for f in sorted((n for n in nodes if isinstance(n, AppliedUndef)), key=sp.default_sort_key):
             raise ModelError(f"{what} depends on {f}, which is not among the coordinates "
                              f"{self.coordinates}")
-        if self._t in e.free_symbols or T in e.free_symbols:
+        free = e.free_symbols
+        if self._t in free or T in free:
             raise ModelError(f"{what} depends explicitly on t: the Chaplygin conditions (1.3) "
                              "require L and the constraints to be free of t")
-        if any(e.has(self.qdd[c]) for c in self.coordinates):
+        if any(self.qdd[c] in free for c in self.coordinates):
             raise ModelError(f"{what} contains an acceleration; L and the constraints (1.1) "
                              "depend on coordinates and velocities only")
         # |u| = sqrt(u**2) for the real quantities here: a form SymPy differentiates
         # (the derivative of Abs of a symbol without assumptions is not evaluated)
-        return e.replace(sp.Abs, lambda u: sp.sqrt(u**2)) if e.has(sp.Abs) else e
+        if any(isinstance(n, sp.Abs) for n in nodes):
+            return e.replace(sp.Abs, lambda u: sp.sqrt(u**2))
+        return e
 
     def _check_chaplygin(self):
         dep_q = [self.q[c] for c in self.dependent_coordinates]
