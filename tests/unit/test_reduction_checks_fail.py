@@ -84,3 +84,17 @@ def test_sampled_points_lie_on_the_energy_surface():
         assert v == value_at(red._vstar, pt)
         assert abs(v - pt[red._drawn]) < 1e-35 * abs(v)
         assert pt[red.system.qd[red._eps]] == v
+
+
+@pytest.mark.parametrize("name", ["sledge", "chain8"])
+def test_wrong_accelerations_fail_the_energy_integral_1_11(name, monkeypatch):
+    """(1.11) is checked with the accelerations of (1.4) substituted (small systems) or
+    replaced at evaluation (large ones): wrong accelerations fail it either way."""
+    S = SYSTEMS[name]().system
+    chk = S._check_energy_rate()
+    assert chk.holds and bool(chk.at) == (name == "chain8")      # the route taken
+    right = S._accelerations()
+    first = next(iter(right))
+    wrong = {**right, first: right[first] * sp.Rational(1001, 1000)}
+    monkeypatch.setattr(S, "_accelerations", lambda: wrong)
+    assert S._check_energy_rate().holds is False
