@@ -43,7 +43,7 @@ from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
 from .rewrite import collected, rational_parts
 from .steps import Derivation, Report, Step, eq, notation, partial
 from .verify import (DPS, EXACT_SIZE_LIMIT, check_identity, check_zero, shared_points,
-                     value_at)
+                     values_at)
 
 __all__ = ["Reduction"]
 
@@ -111,6 +111,33 @@ def _tidy_coefficient(e):
 #: above this many equations (1.26), q'' is read from the accelerations of (1.4)
 #: (``Reduction._accelerations``) instead of a symbolic LU of the full matrix d(1.26)/dq''
 SOLVE_NU_LIMIT = 3
+
+
+class _Sampler:
+    """The random points of a reduction's checks, on the energy surface.
+
+    A call draws one point: a motion (:meth:`Reduction._motion`) whose energy (1.11) is
+    h, with qdot_eps then given the value of the root (1.12) at its (q', q, h), computed
+    from the expression the library derived (the drawn value up to rounding).  So an
+    expression in qdot_eps evaluated at these points is its value at (1.12), the paper's
+    ``*``, without the substituted expression being built; the check of (1.12) compares
+    the root with the drawn value (``Reduction._drawn``).  With ``energy=False`` the
+    drawn motion is returned as it is (h not set).  ``batch`` draws a block of points
+    and evaluates their energies and roots together."""
+
+    def __init__(self, red):
+        self.red = red
+
+    def __call__(self, rng, energy=True):
+        pt = self.red._motion(rng)
+        if energy:
+            self.red._on_surface([pt])
+        return pt
+
+    def batch(self, rng, n):
+        pts = [self.red._motion(rng) for _ in range(n)]
+        self.red._on_surface(pts)
+        return pts
 
 
 class Reduction:
@@ -405,21 +432,18 @@ class Reduction:
         return self.constraint_rates
 
     # ----- random admissible points --------------------------------------
-    def _energy_at(self, pt):
-        """The energy (1.11) at a sampled point (``verify.value_at``: no code generated)."""
-        return value_at(self.system._energy(), pt)
+    @property
+    def _sample(self):
+        """The sampler of the checks' random points (:class:`_Sampler`), one per reduction
+        (the checks share its points within ``verify.shared_points``)."""
+        sampler = self.__dict__.get("_sampler")
+        if sampler is None:
+            sampler = self.__dict__["_sampler"] = _Sampler(self)
+        return sampler
 
-    def _sample(self, rng, energy=True):
-        """A random point on the energy surface, for the checks.
-
-        A motion is drawn (q, q', q'', the parameters and qdot_eps = v0 with the sign of
-        ``direction``) and h is its energy (1.11).  Then qdot_eps, and qdot_nu =
-        qdot_eps q'_nu (1.5), take the value of the root (1.12) at (q', q, h), computed
-        from the expression the library derived: v0 up to rounding.  So an expression in
-        qdot_eps evaluated at these points is its value at (1.12), the paper's ``*``
-        (:meth:`_star`), without the substituted expression being built; the check of
-        (1.12) compares the root with v0 (the symbol ``_drawn``).  With ``energy=False``,
-        qdot_eps is v0 and h is not set (for a caller that sets h itself)."""
+    def _motion(self, rng):
+        """A random motion: the parameters, q, q', q'' and qdot_eps = v0 with the sign of
+        ``direction``, qdot_nu = v0 q'_nu (1.5)."""
         S = self.system
         pt = S._sample_time(rng)
         v = self.direction * rng.uniform(0.3, 1.5)
@@ -430,25 +454,24 @@ class Reduction:
                 pt[self._qp[c]] = rng.uniform(-1, 1)
                 pt[self._qpp[c]] = rng.uniform(-1, 1)
                 pt[S.qd[c]] = mpmath.mpf(v) * mpmath.mpf(pt[self._qp[c]])
-            if energy:
-                pt[self.h] = self._energy_at(pt)
-                pt[self._drawn] = v
-                self._on_surface(pt)
         return pt
 
-    def _on_surface(self, pt):
-        """Put qdot_eps = (1.12) at the point's (q', q, h), and qdot_nu by (1.5); a root
-        that cannot be evaluated there (not real) makes the point unusable (nan)."""
-        S, vs = self.system, self._vstar
-        try:
-            v = value_at(vs, pt)
-        except (ValueError, ZeroDivisionError, OverflowError, KeyError):
-            v = mpmath.nan
-        if not isinstance(v, mpmath.mpf):
-            v = mpmath.nan
-        pt[self._v] = pt[S.qd[self._eps]] = v
-        for c in self._nus:
-            pt[S.qd[c]] = v * mpmath.mpf(pt[self._qp[c]])
+    def _on_surface(self, pts):
+        """Put each point on the energy surface: h = its energy (1.11), then qdot_eps =
+        (1.12) at its (q', q, h) and qdot_nu = qdot_eps q'_nu (1.5); the drawn qdot_eps is
+        kept as ``_drawn``.  The points are evaluated together (``verify.values_at``); a
+        point where the energy or the root cannot be evaluated (or is not real) is
+        unusable (nan)."""
+        S = self.system
+        for pt, h in zip(pts, values_at(S._energy(), pts)):
+            pt[self.h], pt[self._drawn] = h, pt[self._v]
+        with mpmath.workdps(DPS):
+            for pt, v in zip(pts, values_at(self._vstar, pts)):
+                if not isinstance(v, mpmath.mpf):
+                    v = mpmath.nan
+                pt[self._v] = pt[S.qd[self._eps]] = v
+                for c in self._nus:
+                    pt[S.qd[c]] = v * mpmath.mpf(pt[self._qp[c]])
 
     # ----- steps ----------------------------------------------------------
     def _steps(self):

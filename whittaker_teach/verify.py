@@ -29,7 +29,7 @@ from mpmath.libmp import (ComplexResult, mpf_add, mpf_mul, mpf_pow_int, mpf_sqrt
 from .dag import expanded_terms, substitute, tree_size
 from .polywalk import vanishes
 
-__all__ = ["Check", "check_identity", "check_zero", "evaluate", "At", "value_at", "largest_value",
+__all__ = ["Check", "check_identity", "check_zero", "evaluate", "At", "value_at", "values_at", "largest_value",
            "shared_points", "DPS", "TOLERANCE"]
 
 #: Working precision (decimal digits) of the numeric checks.
@@ -640,11 +640,14 @@ class _Points:
 
     def __getitem__(self, i):
         while len(self.points) <= i:
-            pt = self.sample(self.rng)
-            pt = {s: mpmath.mpf(v) if isinstance(v, (int, float)) else v for s, v in pt.items()}
-            self.points.append(pt)
-            self.raws.append({s: v._mpf_ if isinstance(v, mpmath.mpf) else _NOT_RAW
-                              for s, v in pt.items()})
+            batch = getattr(self.sample, "batch", None)   # a sampler that draws a block at once
+            new = batch(self.rng, POINTS) if batch and not self.points else [self.sample(self.rng)]
+            for pt in new:
+                pt = {s: mpmath.mpf(v) if isinstance(v, (int, float)) else v
+                      for s, v in pt.items()}
+                self.points.append(pt)
+                self.raws.append({s: v._mpf_ if isinstance(v, mpmath.mpf) else _NOT_RAW
+                                  for s, v in pt.items()})
         return self.points[i]
 
     def raw(self, i):
@@ -847,6 +850,32 @@ class At:
     def __call__(self, expr):
         with mpmath.workdps(DPS):
             return _value(expr, self.memo, self.raw, mpmath.mp.prec)
+
+
+def values_at(expr, points):
+    """The values of ``expr`` at several points {symbol: number} with the same symbols,
+    evaluated together as the checks' blocks are (:func:`_vector`); nan at a point where
+    it cannot be evaluated (a pole, a domain error).
+
+    >>> x = sp.Symbol("x")
+    >>> [float(v) for v in values_at(sp.sqrt(x) + 1, [{x: 4}, {x: 9}, {x: 0}])]
+    [3.0, 4.0, 1.0]
+    """
+    with mpmath.workdps(DPS):
+        pts = [{s: mpmath.mpf(v) if isinstance(v, (int, float)) else v for s, v in p.items()}
+               for p in points]
+        block = _block_of([{s: v._mpf_ if isinstance(v, mpmath.mpf) else _NOT_RAW
+                            for s, v in p.items()} for p in pts])
+        if block is None:
+            raise ValueError("values_at: the points do not all give the same symbols")
+        vec = _vector(expr, block, mpmath.mp.prec)
+        out = []
+        for i in range(len(pts)):
+            try:
+                out.append(_at(expr, vec, i, pts))
+            except _EVAL_ERRORS:
+                out.append(mpmath.nan)
+        return out
 
 
 def value_at(expr, point):
