@@ -362,7 +362,7 @@ def factor(expr):
     gens, roots = _generators(expr)
     if roots:
         raise NotPolynomial(expr)
-    if not gens:
+    if not gens or _plainly_irreducible(expr):
         return expr
     walk = _walker(list(gens), {})
     num, den = walk(expr)
@@ -377,6 +377,45 @@ def factor(expr):
         coeff *= sp.Rational(int(cd), int(dc))**k
         pieces += [walk.as_expr(g)**(-j * k) for g, j in dfs]
     return _keep_coeff(coeff, sp.Mul(*pieces))
+
+
+def _plainly_irreducible(expr):
+    """Whether ``expr``, a sum of monomials (integer coefficients, positive integer powers
+    of symbols and functions), is irreducible with no content, so that ``factor`` gives
+    it back as it is, read off the terms without a ring: the coefficients have gcd 1, no
+    generator divides every term, and some generator x is of degree one in exactly one
+    term (the test of :func:`_factor_list_of`: a factor of such a polynomial would
+    contain x, and the other factor would divide x's coefficient, a single term, so every
+    term).  The sign needs no normalizing: ``factor``'s -1 times a sum is that sum
+    negated, as SymPy builds the product.
+
+    >>> x, y, z = sp.symbols("x y z")
+    >>> _plainly_irreducible(2*x*y - 3*z**2 + 1), _plainly_irreducible(2*x*y + 4*z)
+    (True, False)
+    """
+    from math import gcd
+    if not isinstance(expr, sp.Add):
+        return False
+    content, powers, count = 0, [], {}
+    for t in expr.args:
+        c, rest = t.as_coeff_Mul()
+        if not c.is_Integer:
+            return False
+        content = gcd(content, int(c))
+        d = {}
+        for f in sp.Mul.make_args(rest):
+            b, e = f.as_base_exp()
+            if not (e.is_Integer and e > 0 and (b.is_Symbol or b.is_Function)):
+                if f is sp.S.One:
+                    continue
+                return False
+            d[b] = d.get(b, 0) + int(e)
+        powers.append(d)
+        for b in d:
+            count[b] = count.get(b, 0) + 1
+    if content != 1 or any(k == len(powers) for k in count.values()):
+        return False
+    return any(count[b] == 1 and k == 1 for d in powers for b, k in d.items())
 
 
 def groups(expr, symbols):
