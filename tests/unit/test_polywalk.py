@@ -270,3 +270,18 @@ def test_groups_over_a_denominator_of_generators_are_expands(expr):
 def test_groups_leave_what_expand_would_open(expr):
     with pytest.raises(NotPolynomial):
         polywalk.groups(expr, [a])
+
+
+def test_plainly_irreducible_sums_are_what_factor_gives_back():
+    """The ring-free shortcut of ``factor`` answers as sympy.factor does (random sums of
+    monomials; those it takes are returned as they stand, srepr-equal to factor's)."""
+    import random
+    gens = sp.symbols("a b c d e") + (sp.sin(t), sp.cos(t))
+    rng, taken = random.Random(1), 0
+    for _ in range(400):
+        e = sp.Add(*[rng.choice([1, -1, 2, -3, 4, -6]) * sp.Mul(*[
+            rng.choice(gens)**rng.randint(1, 2) for _ in range(rng.randint(0, 3))])
+            for _ in range(rng.randint(2, 6))])
+        assert sp.srepr(polywalk.factor(e)) == sp.srepr(sp.factor(e)), e
+        taken += polywalk._plainly_irreducible(e)
+    assert 100 < taken < 390                 # both routes were taken
