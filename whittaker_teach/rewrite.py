@@ -120,6 +120,8 @@ def collected(expr, symbols):
     """
     if _ops_above(expr, OPS_LIMIT):
         return expr
+    if _expanded_free_of(expr, symbols):       # one group, expr itself: no ring needed
+        return pythagoras(expr if _ops_above(expr, FACTOR_LIMIT) else factored(expr))
     try:
         groups = polywalk.groups(expr, symbols)
     except polywalk.NotPolynomial:
@@ -134,6 +136,23 @@ def collected(expr, symbols):
             c = factored(c)
         out.append(c * mono)
     return pythagoras(sp.Add(*out))
+
+
+def _expanded_free_of(expr, symbols):
+    """Whether ``expr`` is a sum of monomials (rational coefficients, positive integer
+    powers of symbols and of functions of atoms) free of ``symbols``: then
+    :func:`collected` has one group, ``expr`` as it stands (``expand`` leaves it so)."""
+    if not isinstance(expr, sp.Add) or expr.free_symbols & set(symbols):
+        return False
+    for t in expr.args:
+        for f in sp.Mul.make_args(t):
+            if f.is_Rational:
+                continue
+            b, e = f.as_base_exp()
+            if not (e.is_Integer and e > 0
+                    and (b.is_Symbol or b.is_Function and all(a.is_Atom for a in b.args))):
+                return False
+    return True
 
 
 def pythagoras(expr):

@@ -285,3 +285,29 @@ def test_plainly_irreducible_sums_are_what_factor_gives_back():
         assert sp.srepr(polywalk.factor(e)) == sp.srepr(sp.factor(e)), e
         taken += polywalk._plainly_irreducible(e)
     assert 100 < taken < 390                 # both routes were taken
+
+
+def test_collected_shortcut_for_a_sum_free_of_the_symbols(monkeypatch):
+    """``collected`` of a sum of monomials free of its symbols skips the ring walk into
+    groups; the result is the one the walk gives (random sums, and the examples' mass
+    and potential coefficients)."""
+    import random
+
+    from whittaker_teach import rewrite
+    gens = sp.symbols("a b c d e") + (sp.sin(t), sp.cos(t))
+    rng, cases = random.Random(2), []
+    for _ in range(150):
+        cases.append(sp.Add(*[rng.choice([1, -1, 2, -3, sp.Rational(1, 2)]) * sp.Mul(*[
+            rng.choice(gens)**rng.randint(1, 3) for _ in range(rng.randint(0, 3))])
+            for _ in range(rng.randint(2, 6))]))
+    for name in ("sledge", "offset_sleigh", "rolling_disk", "kepler"):
+        S = getattr(wt.examples, name)()
+        cases += [S._energy(), *[sp.expand(e) for e in S._eom()]]
+    w = [sp.Symbol("w")]
+    fast = [rewrite.collected(e, w) for e in cases]
+    taken = sum(rewrite._expanded_free_of(e, w) for e in cases)
+    rewrite._FACTORED.clear()
+    monkeypatch.setattr(rewrite, "_expanded_free_of", lambda e, s: False)
+    slow = [rewrite.collected(e, w) for e in cases]
+    assert [sp.srepr(a) for a in fast] == [sp.srepr(b) for b in slow]
+    assert taken > 50
