@@ -4,8 +4,8 @@ A particle of mass m in the plane Oxy, in a harmonic well centred at O (force
 -k r) and in a uniform magnetic field B along +z (out of the page; B stands
 for the charge times the field).  The magnetic force B (ydot, -xdot) bends
 the path to the right of the direction of motion.  The figure shows the axes,
-the level circles of the well, the field symbols, the particle P with its
-velocity v, the well's force and the magnetic force.
+the level circles of the well (k), the field symbols, the particle P with its
+velocity v and the magnetic force (below the arrow's tip, clear of the path).
 
 Run ``python book/figures/systems/charged_particle.py``: it writes
 ``charged_particle.svg`` beside this file (deterministic output).
@@ -82,8 +82,8 @@ def main():
             fontsize=24, va="bottom")
     fmag = np.array([v, -u]) / speed                 # B (ydot, -xdot): to the right
     arrow(ax, P, P + 1.0 * fmag, color="#7d3c98", lw=2.4)
-    ax.text(*(P + 1.05 * fmag + [0.08, -0.05]), r"$B\,(\dot y,-\dot x)$",
-            color="#7d3c98", fontsize=20, va="top")
+    ax.text(*(P + 1.0 * fmag + [0.15, -0.15]), r"$B\,(\dot y,-\dot x)$",   # below the tip,
+            color="#7d3c98", fontsize=20, ha="center", va="top")         # clear of the path
     ax.text(2.05, -1.95, "$k$", color="#5d6d7e", fontsize=20)
     ax.plot(*P, "o", color="k", ms=10, zorder=5)
     ax.text(P[0] - 0.5, P[1] + 0.05, "$P$")
