@@ -24,7 +24,7 @@ import matplotlib
 matplotlib.use("svg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-__all__ = ["style", "arrow", "save"]
+__all__ = ["style", "arrow", "plane", "coordinates", "save"]
 
 
 def style(name, size=22):
@@ -47,6 +47,23 @@ def arrow(ax, A, B, color="k", lw=2.0, ms=22, style="-|>", ls=None, zorder=5):
     kw = {} if zorder is None else {"zorder": zorder}
     ax.annotate("", xy=B, xytext=A, annotation_clip=False,
                 arrowprops=dict(props, shrinkA=0, shrinkB=0), **kw)
+
+
+def plane(ax, xmax, ymax):
+    """The axes x and y of the plane, to ``xmax`` and ``ymax``, with the origin O."""
+    arrow(ax, (0, 0), (xmax, 0))
+    arrow(ax, (0, 0), (0, ymax))
+    ax.text(xmax + 0.1, 0, "$x$", va="center")
+    ax.text(0, ymax + 0.1, "$y$", ha="center", va="bottom")
+    ax.text(-0.12, -0.12, "$O$", ha="right", va="top")
+
+
+def coordinates(ax, P, color="#44546a"):
+    """The coordinates x, y of the point P: dotted lines to the axes, labelled there."""
+    ax.plot([P[0], P[0]], [0, P[1]], ":", color=color, lw=1.4)
+    ax.plot([0, P[0]], [P[1], P[1]], ":", color=color, lw=1.4)
+    ax.text(P[0], -0.15, "$x$", ha="center", va="top", color=color)
+    ax.text(-0.15, P[1], "$y$", ha="right", va="center", color=color)
 
 
 def save(fig, script_file):

@@ -33,15 +33,8 @@ def main():
     ax.set_aspect("equal")
     ax.axis("off")
 
-    arrow(ax, (0, 0), (6.6, 0))
-    arrow(ax, (0, 0), (0, 4.6))
-    ax.text(6.7, 0, "$x$", va="center")
-    ax.text(0, 4.7, "$y$", ha="center", va="bottom")
-    ax.text(-0.12, -0.12, "$O$", ha="right", va="top")
-    ax.plot([P[0], P[0]], [0, P[1]], ":", color="#44546a", lw=1.4)
-    ax.plot([0, P[0]], [P[1], P[1]], ":", color="#44546a", lw=1.4)
-    ax.text(P[0], -0.15, "$x$", ha="center", va="top", color="#44546a")
-    ax.text(-0.15, P[1], "$y$", ha="right", va="center", color="#44546a")
+    _draw.plane(ax, 6.6, 4.6)
+    _draw.coordinates(ax, P)
 
     # the body, an outline around the runner, and the runner (blade) under P
     body = [P - 0.6 * E - 0.55 * N, P + (B + 0.9) * E - 0.55 * N,

@@ -34,18 +34,8 @@ def main():
     ax.set_aspect("equal")
     ax.axis("off")
 
-    # axes of the plane
-    arrow(ax, (0, 0), (6.4, 0))
-    arrow(ax, (0, 0), (0, 4.6))
-    ax.text(6.5, 0, "$x$", va="center")
-    ax.text(0, 4.7, "$y$", ha="center", va="bottom")
-    ax.text(-0.12, -0.12, "$O$", ha="right", va="top")
-
-    # coordinates of the contact point
-    ax.plot([P[0], P[0]], [0, P[1]], ":", color="#44546a", lw=1.4)
-    ax.plot([0, P[0]], [P[1], P[1]], ":", color="#44546a", lw=1.4)
-    ax.text(P[0], -0.15, "$x$", ha="center", va="top", color="#44546a")
-    ax.text(-0.15, P[1], "$y$", ha="right", va="center", color="#44546a")
+    _draw.plane(ax, 6.4, 4.6)               # axes of the plane
+    _draw.coordinates(ax, P)                # coordinates of the contact point
 
     # the runner (blade)
     half = 1.55
