@@ -20,15 +20,9 @@ import nbformat
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from tests.integration.kepler_answers import EX, RIGHT, WRONG  # noqa: E402
 from whittaker_teach.exercises import grade as grading  # noqa: E402
 
-EX = "kepler-orbit"
-RIGHT = {"L_star": "sqrt(2*h + 2*m*mu/r)*sqrt(m*(r^2 + r'^2))",
-         "r_pp": "(r^2*(2*h*r + m*mu) + r'^2*(4*h*r + 3*m*mu))/(2*r*(h*r + m*mu))",
-         "h": "-m*mu*(1 - e^2)/(2*p)"}
-WRONG = {"L_star": "-sqrt(2*h + 2*m*mu/r)*sqrt(m*(r^2 + r'^2))",
-         "r_pp": "(r^2*(2*h*r + m*mu) + r'^2*(4*h*r + 3*m*mu))/(2*(h*r + m*mu))",
-         "h": "-m*mu*Abs(1 - e^2)/(2*p)"}
 SYMPY = ("import sympy as sp\nm, mu, p, r = sp.symbols('m mu p r', positive=True)\n"
          "h, e, rp = sp.symbols('h e rprime')\n"
          f"check({EX!r}, sp.sqrt(2*h + 2*m*mu/r)*sp.sqrt(m*(r**2 + rp**2)), part='L_star')\n"

@@ -43,7 +43,7 @@ from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
 from .rewrite import collected, rational_parts
 from .steps import Derivation, Report, Step, eq, notation, partial
 from .verify import (DPS, EXACT_SIZE_LIMIT, check_identity, check_zero, shared_points,
-                     values_at)
+                     values_at, within_size)
 
 __all__ = ["Reduction"]
 
@@ -457,11 +457,9 @@ class Reduction:
         return pt
 
     def _on_surface(self, pts):
-        """Put each point on the energy surface: h = its energy (1.11), then qdot_eps =
-        (1.12) at its (q', q, h) and qdot_nu = qdot_eps q'_nu (1.5); the drawn qdot_eps is
-        kept as ``_drawn``.  The points are evaluated together (``verify.values_at``); a
-        point where the energy or the root cannot be evaluated (or is not real) is
-        unusable (nan)."""
+        """Put the drawn motions on the energy surface, as :class:`_Sampler` says, all
+        evaluated together (``verify.values_at``); a point where the energy or the root
+        cannot be evaluated (or is not real) is unusable (nan)."""
         S = self.system
         for pt, h in zip(pts, values_at(S._energy(), pts)):
             pt[self.h], pt[self._drawn] = h, pt[self._v]
@@ -486,13 +484,7 @@ class Reduction:
         sampled points, which lie on the energy surface (:meth:`_sample`): their value
         there is the starred one's, and no substituted expression is built."""
         sides, starred = list(sides), list(starred)
-        size, small = 0, True
-        for e in sides + starred:
-            size += tree_size(e, EXACT_SIZE_LIMIT)
-            if size > EXACT_SIZE_LIMIT:
-                small = False
-                break
-        if small:
+        if within_size(sides + starred, EXACT_SIZE_LIMIT):
             return check_identity(label, claim, starred, [self._star(e) for e in sides],
                                   self._sample)
         return check_identity(label, claim, starred, sides, self._sample, exact=False)

@@ -45,14 +45,14 @@ import sympy as sp
 from sympy.core.function import AppliedUndef
 
 from .coordinates import T, name, sign_assumptions
-from .dag import diff, max_depth, power, substitute, tree_size, zeroed
+from .dag import diff, instances, max_depth, power, substitute, zeroed
 from .errors import ModelError, ModelTypeError, guarded
 from .linear import lu_solve
 from .reduction import Reduction
 from .rewrite import collected, rational
 from .steps import Derivation, Report, Step, eq
 from .verify import (DPS, EXACT_SIZE_LIMIT, At, Unevaluable, check_identity, check_zero,
-                     shared_points)
+                     shared_points, within_size)
 
 __all__ = ["ChaplyginSystem"]
 
@@ -63,21 +63,14 @@ MAX_DEPTH = 30
 
 
 def _nodes(expr):
-    """The distinct subexpressions of ``expr`` (one walk, a shared subtree once)."""
-    seen, stack = set(), [expr]
-    while stack:
-        e = stack.pop()
-        if e not in seen:
-            seen.add(e)
-            stack.extend(e.args)
-    return seen
+    """The distinct subexpressions of ``expr`` (one walk: ``dag.instances``)."""
+    return set(instances(expr, sp.Basic))
 
 
-def _check_values(expr, what, nodes=None):
+def _check_values(expr, what):
     """Refuse what the derivation cannot treat as a real function of the coordinates:
-    infinities, NaN, complex coefficients, too deep a nesting (``nodes``: those of
-    ``expr``, if known)."""
-    nodes = _nodes(expr) if nodes is None else nodes
+    infinities, NaN, complex coefficients, too deep a nesting."""
+    nodes = _nodes(expr)
     if sp.nan in nodes:
         raise ModelError(f"{what} contains nan (not a number): L and the constraints must be "
                          "finite real expressions (1.1)")
@@ -495,7 +488,7 @@ class ChaplyginSystem:
         n = M.rows
         if all(M[i, j] is sp.S.Zero for i in range(n) for j in range(n) if i != j):
             return [-rest[i] * power(M[i, i], -1) for i in range(n)]
-        small = sum(tree_size(e, PIVOT_BY_VALUE_NODES) for e in M) <= PIVOT_BY_VALUE_NODES
+        small = within_size(list(M), PIVOT_BY_VALUE_NODES)
         try:
             return lu_solve(M, -rest) if small else lu_solve(M, -rest, _zero_at(point))
         except ValueError as err:
@@ -581,7 +574,7 @@ class ChaplyginSystem:
         expression, often large, never built."""
         claim = "$dE/dt = 0$ along the solutions of (1.4)"
         rate, acc = self._dt(self._energy()), self._accelerations()
-        if sum(tree_size(e, EXACT_SIZE_LIMIT) for e in [rate, *acc.values()]) <= EXACT_SIZE_LIMIT:
+        if within_size([rate, *acc.values()], EXACT_SIZE_LIMIT):
             return check_zero("1.11", claim, self._energy_rate(), self._sample_time, seed=11)
         return check_zero("1.11", claim, rate, self._sample_time, seed=11, at=acc)
 

@@ -29,7 +29,7 @@ from mpmath.libmp import (ComplexResult, mpf_add, mpf_mul, mpf_pow_int, mpf_sqrt
 from .dag import expanded_terms, substitute, tree_size
 from .polywalk import vanishes
 
-__all__ = ["Check", "check_identity", "check_zero", "evaluate", "At", "value_at", "values_at", "largest_value",
+__all__ = ["Check", "check_identity", "check_zero", "evaluate", "At", "value_at", "values_at", "within_size", "largest_value",
            "shared_points", "DPS", "TOLERANCE"]
 
 #: Working precision (decimal digits) of the numeric checks.
@@ -112,8 +112,14 @@ def _as_list(x):
     return list(x) if isinstance(x, (list, tuple)) else [x]
 
 
-def _small(exprs, limit):
-    """Whether the tree sizes of ``exprs`` add up to at most ``limit``."""
+def within_size(exprs, limit):
+    """Whether the tree sizes of ``exprs`` add up to at most ``limit`` (each counted only
+    that far: the cost stays bounded on large expressions).
+
+    >>> x = sp.Symbol("x")
+    >>> within_size([x + 1, sp.sin(x)], 5), within_size([x + 1, sp.sin(x)], 4)
+    (True, False)
+    """
     total = 0
     for e in exprs:
         total += tree_size(e, limit)
@@ -734,9 +740,6 @@ class _Derived:
                 self._block[_BASE] = (self.base.block(), self)
         return self._block
 
-    def derived(self, at):
-        return _Derived(self.base, {**self.at, **at})
-
 
 _SHARED = []
 
@@ -943,7 +946,7 @@ def check_identity(label, claim, lhs, rhs, sample, *, exact=True, points=POINTS,
     lhs = [sp.sympify(a) for a in _as_list(lhs)]
     rhs = [sp.sympify(b) for b in _as_list(rhs)]
     definitions = dict(definitions or {})
-    if definitions and _small(lhs + rhs + list(definitions.values()), SUBSTITUTE_LIMIT):
+    if definitions and within_size(lhs + rhs + list(definitions.values()), SUBSTITUTE_LIMIT):
         lhs = [substitute(a, definitions) for a in lhs]
         rhs = [substitute(b, definitions) for b in rhs]
         definitions = {}

@@ -20,19 +20,14 @@ import pytest
 from whittaker_teach.exercises import grade as grading
 from whittaker_teach.exercises import sandbox
 
+from .kepler_answers import EX, RIGHT, WRONG
+
 # one xdist worker for every test that grades in the sandbox: the sandbox uids are the
 # same in each batch, and a test that looks for processes left running would see
 # another batch's (make unit runs with --dist loadgroup)
 pytestmark = [pytest.mark.skipif(bool(sandbox.available()), reason=sandbox.available() or "-"),
               pytest.mark.xdist_group("sandbox")]
 
-EX = "kepler-orbit"
-RIGHT = {"L_star": "sqrt(2*h + 2*m*mu/r)*sqrt(m*(r^2 + r'^2))",
-         "r_pp": "(r^2*(2*h*r + m*mu) + r'^2*(4*h*r + 3*m*mu))/(2*r*(h*r + m*mu))",
-         "h": "-m*mu*(1 - e^2)/(2*p)"}
-WRONG = {"L_star": "-sqrt(2*h + 2*m*mu/r)*sqrt(m*(r^2 + r'^2))",
-         "r_pp": "(r^2*(2*h*r + m*mu) + r'^2*(4*h*r + 3*m*mu))/(2*(h*r + m*mu))",
-         "h": "-m*mu*Abs(1 - e^2)/(2*p)"}
 START = "from whittaker_teach.exercises import check\nimport os, sys, time, signal, json"
 SECRET = "TOPSECRET-7f3a"
 MEMORY_MB, DISK_MB = 1000, 64
