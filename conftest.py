@@ -11,13 +11,21 @@ the same order, with numbers within ``SVG_TOLERANCE_PT`` of each other and
 hash-named ids (``p0123456789``) renamed in order of first appearance. Every
 other output (text, LaTeX, HTML) is still compared exactly.
 
-Also: a test's figures meant for the log (a benchmark table, recorded with
+Also: under pytest 9, pytest-xdist's ``--dist loadgroup`` no longer groups anything
+(xdist 3.8 renames a test by setting ``item._nodeid``, which pytest 9 no longer reads:
+it keeps a structured ``item._id``).  The hook below gives each test marked
+``xdist_group(name)`` the id ``...@name`` that xdist's scheduler groups by, so that
+the tests that grade in the sandbox do run in one worker, one at a time.
+
+And: a test's figures meant for the log (a benchmark table, recorded with
 ``record_property("printed", text)``) are printed at the end of the run, by the
 main process: under pytest-xdist a worker's own prints never reach the terminal.
 """
 from __future__ import annotations
 
 import re
+
+import pytest
 
 SVG_TOLERANCE_PT = 0.05          # 1/1440 inch: invisible at any zoom a reader uses
 
@@ -87,3 +95,20 @@ def pytest_terminal_summary(terminalreporter):
             for name, value in getattr(report, "user_properties", ()):
                 if name == "printed" and report.when == "call":
                     terminalreporter.write_line(str(value))
+
+
+@pytest.hookimpl(trylast=True)
+def pytest_collection_modifyitems(config, items):
+    """``--dist loadgroup``: the ``@group`` suffix xdist adds to a grouped test's id, in the
+    form pytest 9 reads (see the module docstring); nothing where xdist's own works."""
+    if not getattr(config.option, "loadgroup", False):     # set in xdist's workers
+        return
+    try:
+        from _pytest.nodeid import NodeId
+    except ImportError:             # pytest before 9: xdist's own suffix works
+        return
+    for item in items:
+        names = {str(m.args[0] if m.args else m.kwargs.get("name", "default"))
+                 for m in item.iter_markers("xdist_group")}
+        if names and "@" not in item.nodeid and hasattr(item, "_id"):
+            item._id = NodeId.parse(f"{item.nodeid}@{'_'.join(sorted(names))}")
