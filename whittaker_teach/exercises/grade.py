@@ -348,6 +348,17 @@ class Settings:
 
 
 _LIVE = set()          # the runs going on (killed if the grader is interrupted)
+_LIVE_LOCK = threading.Lock()   # a run starts and is recorded in _LIVE under it, and an
+_STOP = threading.Event()       # interrupt sets _STOP under it: no run starts after that
+
+
+def _stop_runs():
+    """No new run from now on; kill the running ones (with everything they started)."""
+    with _LIVE_LOCK:
+        _STOP.set()
+        live = list(_LIVE)
+    for proc in live:
+        _kill(proc)
 
 
 def _run(raw, settings, package=None, solvers=True, slot=0):
@@ -383,10 +394,15 @@ def _run(raw, settings, package=None, solvers=True, slot=0):
                                   limits, settings.cell_timeout, log_w, groups.procs)
             env, cwd = {"PATH": "/usr/bin:/bin"}, str(top)
         try:
-            proc = subprocess.Popen(cmd, env=env, cwd=cwd, stdin=subprocess.DEVNULL,
-                                    stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                    start_new_session=True, pass_fds=(log_w,))
-            _LIVE.add(proc)
+            with _LIVE_LOCK:
+                if _STOP.is_set():          # interrupted before this run started
+                    if groups is not None:
+                        groups.close()
+                    return None, "the grader was interrupted before this notebook ran", ""
+                proc = subprocess.Popen(cmd, env=env, cwd=cwd, stdin=subprocess.DEVNULL,
+                                        stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                        start_new_session=True, pass_fds=(log_w,))
+                _LIVE.add(proc)
         finally:
             os.close(log_w)
         out, err = _Reader(proc.stdout, sandbox.MAX_RESULT_BYTES), _Reader(proc.stderr, 20_000)
@@ -692,6 +708,7 @@ def grade(paths, out, feedback=None, jobs=2, cell_timeout=CELL_TIMEOUT,
     """
     from . import sandbox
     from .gradebook import write_exports
+    _STOP.clear()                   # (a grader interrupted before, in this process)
     why = sandbox.available()
     if why and not unsafe:
         raise SandboxUnavailable(why)
@@ -752,9 +769,8 @@ def grade(paths, out, feedback=None, jobs=2, cell_timeout=CELL_TIMEOUT,
                                 f"({type(exc).__name__}); please report it", 0, 0)]
                 done(i, rows)
         except BaseException:       # Ctrl-C, say: no new run, and the running ones killed
+            _stop_runs()            # (a thread about to start one finds _STOP set)
             pool.shutdown(wait=False, cancel_futures=True)
-            for proc in list(_LIVE):
-                _kill(proc)
             raise
         pool.shutdown()
     finally:
