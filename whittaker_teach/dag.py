@@ -399,6 +399,59 @@ def _plain_function(cls):
     return r
 
 
+def _merges(o):
+    """Whether the factor ``o`` may combine in ``Mul.flatten`` with anything but a factor
+    of the same base: a number or a power of a number (3**x * 2**x, sqrt(2) * sqrt(3)),
+    I, an exponential (exp(x) * exp(y)), an order term or anything non-commutative."""
+    return (o.is_Number or o is sp.S.ImaginaryUnit or o.is_Order or not o.is_commutative
+            or (o.is_Pow and o.base.is_Number) or isinstance(o, sp.exp)
+            or not isinstance(o, sp.Expr))
+
+
+def _product_with(args, i, da):
+    """``Mul(*(args[:i] + (da,) + args[i + 1:]))`` for the factors ``args`` of a
+    product: the same expression, without ``Mul.flatten`` where nothing can merge.
+
+    Differentiating a product replaces one factor by its derivative, so the other
+    factors are already in canonical order and distinct.  When the derivative's
+    factors and the others have distinct bases, are plain (:func:`_merges`) and the
+    numbers among them are rational, ``flatten`` only multiplies the numbers and
+    sorts the factors (``_mulsort``); that is done here.  In any other case (a
+    common base, a float, two factors of which one is rational, a number times a
+    sum, which ``flatten`` distributes) SymPy's ``Mul`` builds it.
+
+    >>> x, y = sp.symbols("x y")
+    >>> e = 3 * x**2 * sp.sin(y)
+    >>> _product_with(e.args, 1, 2*x) == sp.Mul(3, 2*x, sp.sin(y))
+    True
+    """
+    from sympy.core.mul import _mulsort
+    rest = args[:i] + args[i + 1:]
+    new = da.args if type(da) is sp.Mul else (da,)
+    if da is sp.S.One or (len(rest) == 1 and (da.is_Rational or rest[0].is_Rational)):
+        return sp.Mul(*(args[:i] + (da,) + args[i + 1:]))    # flatten's rules for two
+    coeff, factors, bases = sp.S.One, [], set()
+    for o in rest + new:
+        if o.is_Rational:
+            coeff *= o
+            continue
+        if _merges(o):
+            return sp.Mul(*(args[:i] + (da,) + args[i + 1:]))
+        b = o.base if o.is_Pow else o
+        if b in bases:
+            return sp.Mul(*(args[:i] + (da,) + args[i + 1:]))
+        bases.add(b)
+        factors.append(o)
+    if coeff.is_zero or (len(factors) == 1 and coeff is not sp.S.One and factors[0].is_Add):
+        return sp.Mul(*(args[:i] + (da,) + args[i + 1:]))
+    _mulsort(factors)
+    if coeff is not sp.S.One:
+        factors.insert(0, coeff)
+    if len(factors) == 1:
+        return factors[0]
+    return sp.Mul._exec_constructor_postprocessors(sp.Mul._from_args(factors, True))
+
+
 def _d(e, s, memo):
     key = (e, s)
     r = memo.get(key)
@@ -417,7 +470,7 @@ def _d(e, s, memo):
             da = _d(a, s, memo)
             if da is sp.S.Zero and not _singular(e, memo):
                 continue                  # Mul(..., 0, ...) is 0: no factor is infinite
-            terms.append(sp.Mul(*(args[:i] + (da,) + args[i + 1:])))
+            terms.append(_product_with(args, i, da))
         r = sp.Add(*terms)
     elif t is sp.Pow:
         from sympy import log

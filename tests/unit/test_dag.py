@@ -140,3 +140,40 @@ def test_renamed_refuses_a_sum_as_a_value():
     x, y = sp.symbols("x y")
     with pytest.raises(ValueError):
         dag.renamed(x * y, {x: x + y})
+
+
+def _random_factor(rng, depth=0):
+    x, y, z = sp.symbols("x y z")
+    n = sp.Symbol("n", commutative=False)
+    atoms = [x, y, z, sp.Symbol("a", positive=True), x + y, x * y + 1, sp.sin(x), sp.cos(y),
+             sp.exp(x), sp.sqrt(2), sp.pi, sp.E, sp.I, sp.Float(1.5), sp.Rational(3, 2),
+             sp.Integer(-1), sp.Integer(2), n]
+    r = rng.random()
+    if depth > 1 or r < 0.5:
+        return rng.choice(atoms)
+    if r < 0.65:
+        return _random_factor(rng, depth + 1)**rng.choice(
+            [2, -1, sp.Rational(1, 2), sp.Rational(-3, 2), y])
+    if r < 0.85:
+        return sp.Mul(*[_random_factor(rng, depth + 1) for _ in range(rng.randint(2, 4))])
+    return sp.Add(*[_random_factor(rng, depth + 1) for _ in range(rng.randint(2, 3))])
+
+
+def test_product_with_a_new_factor_is_mul_argument_by_argument():
+    """The Leibniz rule's products, built without ``Mul.flatten`` where nothing merges,
+    are SymPy's ``Mul`` to the order of the arguments: on random products (common
+    bases, floats, I, exp, roots of numbers, sums, non-commutative factors) and on
+    the rules ``flatten`` applies to two factors and to a number times a sum."""
+    rng = random.Random(3)
+    x, y = sp.symbols("x y")
+    cases = [((sp.Integer(2), x), 1, x + y), ((x, y), 1, sp.Integer(3)),
+             ((sp.Integer(3), x, y), 2, 1 / x), ((sp.Integer(2), x + y, y), 2, sp.Rational(1, 2)),
+             ((sp.exp(x), y, x), 1, sp.exp(y)), ((sp.sqrt(2), x, y), 1, sp.sqrt(3))]
+    while len(cases) < 1500:
+        e = sp.Mul(*[_random_factor(rng) for _ in range(rng.randint(2, 5))])
+        if type(e) is sp.Mul:
+            cases.append((e.args, rng.randrange(len(e.args)), _random_factor(rng)))
+    for args, i, da in cases:
+        built = dag._product_with(args, i, da)
+        mul = sp.Mul(*(args[:i] + (da,) + args[i + 1:]))
+        assert built == mul and type(built) is type(mul) and built.args == mul.args, (args, i, da)
