@@ -242,10 +242,10 @@ class Reduction:
         out = memo.get(f)
         if out is None:
             S, d = self.system, self._d
-            out = d(f, S.q[self._eps])
+            terms = [d(f, S.q[self._eps])]
             for c in self._nus:
-                out += d(f, self._qp[c]) * self._qpp[c] + d(f, S.q[c]) * self._qp[c]
-            memo[f] = out
+                terms += [d(f, self._qp[c]) * self._qpp[c], d(f, S.q[c]) * self._qp[c]]
+            out = memo[f] = sp.Add(*terms)      # one sum: no partial sums re-flattened
         return out
 
     def _chain(self, a, f, z):
@@ -520,7 +520,7 @@ class Reduction:
                        check_identity(
             "1.7", r"$\partial\Omega/\partial\dot q_\varepsilon = \sum_\sigma (\partial\tilde L/"
             r"\partial\dot q_\sigma)\,\dot q_\sigma/\dot q_\varepsilon$", Omv,
-            self._sub15(sum((self._d(Lt, S.qd[c]) * S.qd[c] for c in sig), sp.S.Zero)) / v, smp)))
+            self._sub15(sp.Add(*[self._d(Lt, S.qd[c]) * S.qd[c] for c in sig])) / v, smp)))
         st.append(Step("1.8", r"$\partial\Omega/\partial q'_\nu$", lambda: [eq(d("Omega", qp[c]),
                                                           tidy(self._d(Om, qp[c]))) for c in nus],
                        check_identity(

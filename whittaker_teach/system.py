@@ -374,8 +374,8 @@ class ChaplyginSystem:
 
     def _dt(self, f):
         """Total time derivative of f(q_sigma, qdot_sigma) along a motion."""
-        return sum((self._d(f, self.q[c]) * self.qd[c] + self._d(f, self.qd[c]) * self.qdd[c]
-                    for c in self._sig), sp.S.Zero)
+        return sp.Add(*[t for c in self._sig for t in (self._d(f, self.q[c]) * self.qd[c],
+                                                        self._d(f, self.qd[c]) * self.qdd[c])])
 
     # ----- (1.4) ----------------------------------------------------------
     def _eom(self):
@@ -517,7 +517,7 @@ class ChaplyginSystem:
 
     # ----- (1.10), (1.11) -------------------------------------------------
     def _euler_residuals(self):
-        return [sum((self._d(phi, self.qd[c]) * self.qd[c] for c in self._sig), sp.S.Zero) - phi
+        return [sp.Add(*[self._d(phi, self.qd[c]) * self.qd[c] for c in self._sig], -phi)
                 for phi in self._phi.values()]
 
     @guarded("checking (1.10)")
@@ -544,7 +544,7 @@ class ChaplyginSystem:
     def _energy(self):
         if "E" not in self._cache:
             Lt = self._Ltilde
-            E = sum((self.qd[c] * self._d(Lt, self.qd[c]) for c in self._sig), sp.S.Zero) - Lt
+            E = sp.Add(*[self.qd[c] * self._d(Lt, self.qd[c]) for c in self._sig], -Lt)
             self._cache["E"] = E if self._large else collected(E, self._velocity_symbols())
         return self._cache["E"]
 
