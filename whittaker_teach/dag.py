@@ -416,40 +416,72 @@ def _product_with(args, i, da):
     factors are already in canonical order and distinct.  When the derivative's
     factors and the others have distinct bases, are plain (:func:`_merges`) and the
     numbers among them are rational, ``flatten`` only multiplies the numbers and
-    sorts the factors (``_mulsort``); that is done here.  In any other case (a
-    common base, a float, two factors of which one is rational, a number times a
-    sum, which ``flatten`` distributes) SymPy's ``Mul`` builds it.
+    sorts the factors (``_mulsort``); that is done here (:func:`_plain_product`).  In
+    any other case (a common base, a float, two factors of which one is rational, a
+    number times a sum, which ``flatten`` distributes) SymPy's ``Mul`` builds it.
 
     >>> x, y = sp.symbols("x y")
     >>> e = 3 * x**2 * sp.sin(y)
     >>> _product_with(e.args, 1, 2*x) == sp.Mul(3, 2*x, sp.sin(y))
     True
     """
-    from sympy.core.mul import _mulsort
     rest = args[:i] + args[i + 1:]
-    new = da.args if type(da) is sp.Mul else (da,)
-    if da is sp.S.One or (len(rest) == 1 and (da.is_Rational or rest[0].is_Rational)):
-        return sp.Mul(*(args[:i] + (da,) + args[i + 1:]))    # flatten's rules for two
-    coeff, factors, bases = sp.S.One, [], set()
-    for o in rest + new:
+    r = None
+    if da is not sp.S.One and not (len(rest) == 1 and (da.is_Rational or rest[0].is_Rational)):
+        r = _plain_product(rest + (da.args if type(da) is sp.Mul else (da,)))
+    return sp.Mul(*(args[:i] + (da,) + args[i + 1:])) if r is None else r
+
+
+def _power_rule(e, dbase):
+    """``e * (dbase * e.exp / e.base)``, the derivative of the power ``e`` = b**x with a
+    constant exponent: the same expression, b**x / b merged into b**(x - 1) directly
+    where x is a rational number (a symbolic x stays apart: x**y * x**-1), b is a sum,
+    a symbol or a plain function and nothing else in the product has the base b
+    (``flatten`` then merges only these two); else SymPy's own products.  The base
+    is not a number (it holds the variable differentiated by; 1/sqrt(2 + I) would
+    evaluate otherwise).
+
+    >>> x, y = sp.symbols("x y")
+    >>> e = sp.sqrt(x**2 + y)
+    >>> _power_rule(e, 2*x) == e * (2*x * e.exp / e.base)
+    True
+    """
+    b, x = e.base, e.exp
+    scaled = dbase * x                       # SymPy's: a number times a sum is distributed
+    if x.is_Rational and (isinstance(b, (sp.Add, sp.Symbol))
+                          or (_plain_function(type(b)) and not _merges(b))):
+        k = x - 1
+        own = () if k is sp.S.Zero else (b,) if k is sp.S.One else (sp.Pow(b, k),)
+        r = _plain_product(own + (scaled.args if type(scaled) is sp.Mul else (scaled,)))
+        if r is not None:
+            return r
+    return e * (scaled / b)
+
+
+def _plain_product(factors):
+    """``Mul(*factors)`` where ``flatten`` would only multiply the rational numbers and
+    sort the rest: every other factor plain (:func:`_merges`) and of its own base, and
+    not a number times a single sum (which ``flatten`` distributes); None otherwise.
+    (``flatten``'s rules for exactly two factors are the caller's to rule out.)"""
+    from sympy.core.mul import _mulsort
+    coeff, out, bases = sp.S.One, [], set()
+    for o in factors:
         if o.is_Rational:
             coeff *= o
             continue
-        if _merges(o):
-            return sp.Mul(*(args[:i] + (da,) + args[i + 1:]))
         b = o.base if o.is_Pow else o
-        if b in bases:
-            return sp.Mul(*(args[:i] + (da,) + args[i + 1:]))
+        if _merges(o) or b in bases:
+            return None
         bases.add(b)
-        factors.append(o)
-    if coeff.is_zero or (len(factors) == 1 and coeff is not sp.S.One and factors[0].is_Add):
-        return sp.Mul(*(args[:i] + (da,) + args[i + 1:]))
-    _mulsort(factors)
+        out.append(o)
+    if coeff.is_zero or (len(out) == 1 and coeff is not sp.S.One and out[0].is_Add):
+        return None
+    _mulsort(out)
     if coeff is not sp.S.One:
-        factors.insert(0, coeff)
-    if len(factors) == 1:
-        return factors[0]
-    return sp.Mul._exec_constructor_postprocessors(sp.Mul._from_args(factors, True))
+        out.insert(0, coeff)
+    if len(out) < 2:
+        return out[0] if out else sp.S.One
+    return sp.Mul._exec_constructor_postprocessors(sp.Mul._from_args(out, True))
 
 
 def _d(e, s, memo):
@@ -476,7 +508,7 @@ def _d(e, s, memo):
         from sympy import log
         dbase, dexp = _d(e.base, s, memo), _d(e.exp, s, memo)
         if dexp is sp.S.Zero and not _singular(e.base, memo):
-            r = e * (dbase * e.exp / e.base)      # 0*log(base) is 0: base is not 0 or infinite
+            r = _power_rule(e, dbase)        # 0*log(base) is 0: base is not 0 or infinite
         else:
             r = e * (dexp * log(e.base) + dbase * e.exp / e.base)
     elif _plain_function(t):

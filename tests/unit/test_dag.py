@@ -177,3 +177,23 @@ def test_product_with_a_new_factor_is_mul_argument_by_argument():
         built = dag._product_with(args, i, da)
         mul = sp.Mul(*(args[:i] + (da,) + args[i + 1:]))
         assert built == mul and type(built) is type(mul) and built.args == mul.args, (args, i, da)
+
+
+def test_power_rule_is_sympys_product_argument_by_argument():
+    """The derivative of a power with a constant exponent, b**x / b merged directly, is
+    SymPy's ``e * (dbase * x / b)``: random bases (sums, symbols, functions, exp,
+    powers, products) and exponents (rational, symbolic, float), random dbase."""
+    rng = random.Random(5)
+    x, y = sp.symbols("x y")
+    exps = [2, 3, -1, -2, sp.Rational(1, 2), sp.Rational(-1, 2), sp.Rational(3, 2), y,
+            sp.Float(0.5)]
+    cases = 0
+    while cases < 1500:
+        e = sp.Pow(_random_factor(rng), rng.choice(exps))
+        if type(e) is not sp.Pow or not e.base.free_symbols:     # as in a derivative
+            continue
+        dbase = _random_factor(rng)
+        cases += 1
+        built = dag._power_rule(e, dbase)
+        sympys = e * (dbase * e.exp / e.base)
+        assert built == sympys and built.args == sympys.args, (e, dbase)
