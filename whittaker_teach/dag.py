@@ -484,6 +484,41 @@ def _plain_product(factors):
     return sp.Mul._exec_constructor_postprocessors(sp.Mul._from_args(out, True))
 
 
+def _plain_sum(terms):
+    """``Add(*terms)`` where ``flatten`` would only sort the terms: each term (those of a
+    sum among them taken one by one) is plain (:func:`_merges`: no number, no float
+    coefficient) and has its own part apart from a rational coefficient, so that no
+    two combine; None otherwise (SymPy's ``Add`` then builds it).
+
+    >>> x, y = sp.symbols("x y")
+    >>> _plain_sum([x*y, -2*sp.sin(x), x + y**2]) == sp.Add(x*y, -2*sp.sin(x), x + y**2)
+    True
+    """
+    from sympy.core.add import _addsort
+    out, seen = [], set()
+    for t in terms:
+        for o in (t.args if type(t) is sp.Add else (t,)):
+            if o is sp.S.Zero:
+                continue                     # dropped before flatten, as the identity
+            if type(o) is sp.Mul:
+                c = o.args[0]
+                if not o.is_commutative or (c.is_Number and not c.is_Rational):
+                    return None
+                rest = o._new_rawargs(*o.args[1:]) if c.is_Rational else o
+            elif _merges(o):
+                return None
+            else:
+                rest = o
+            if rest in seen:
+                return None
+            seen.add(rest)
+            out.append(o)
+    if len(out) < 2:
+        return out[0] if out else sp.S.Zero
+    _addsort(out)
+    return sp.Add._exec_constructor_postprocessors(sp.Add._from_args(out, True))
+
+
 def _d(e, s, memo):
     key = (e, s)
     r = memo.get(key)
@@ -495,7 +530,8 @@ def _d(e, s, memo):
     elif isinstance(e, sp.Symbol):
         r = s.rates[e] if isinstance(s, _Direction) else sp.S.One
     elif t is sp.Add:
-        r = sp.Add(*[_d(a, s, memo) for a in e.args])
+        terms = [_d(a, s, memo) for a in e.args]
+        r = _plain_sum(terms) or sp.Add(*terms)
     elif t is sp.Mul:
         args, terms = e.args, []
         for i, a in enumerate(args):
@@ -503,7 +539,7 @@ def _d(e, s, memo):
             if da is sp.S.Zero and not _singular(e, memo):
                 continue                  # Mul(..., 0, ...) is 0: no factor is infinite
             terms.append(_product_with(args, i, da))
-        r = sp.Add(*terms)
+        r = _plain_sum(terms) or sp.Add(*terms)
     elif t is sp.Pow:
         from sympy import log
         dbase, dexp = _d(e.base, s, memo), _d(e.exp, s, memo)

@@ -197,3 +197,16 @@ def test_power_rule_is_sympys_product_argument_by_argument():
         built = dag._power_rule(e, dbase)
         sympys = e * (dbase * e.exp / e.base)
         assert built == sympys and built.args == sympys.args, (e, dbase)
+
+
+def test_plain_sum_is_add_argument_by_argument():
+    """Sums built without ``Add.flatten`` where no terms combine are SymPy's ``Add``:
+    random terms (sums among them, numbers, floats, zeros, like terms, I, powers of
+    numbers, non-commutative products)."""
+    rng = random.Random(7)
+    for _ in range(1500):
+        terms = [rng.choice([sp.S.Zero, _random_factor(rng)]) for _ in range(rng.randint(1, 5))]
+        built = dag._plain_sum(terms)
+        if built is not None:
+            add = sp.Add(*terms)
+            assert built == add and type(built) is type(add) and built.args == add.args, terms
