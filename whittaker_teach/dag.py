@@ -225,9 +225,26 @@ def _walk(e, mapping, memo):
 
 
 def _rebuilt(e, args):
-    if type(e) is sp.Pow:
+    t = type(e)
+    if t is sp.Pow:
         return power(*args)        # Pow(*args), without its queries that change nothing
+    if t is sp.Add or t is sp.Mul:
+        r = _plain(t, args)
+        if r is not None:
+            return r
     return e.func(*args)
+
+
+def _plain(t, args):
+    """``t(*args)`` for ``t`` Add or Mul, without ``flatten`` where nothing combines
+    (:func:`_plain_sum`, :func:`_plain_product`; a product's factors that are products
+    taken one by one, as ``flatten`` takes them); None otherwise."""
+    if t is sp.Add:
+        return _plain_sum(args)
+    kept = [a for a in args if a is not sp.S.One]         # the identity, dropped first
+    if len(kept) == 2 and (kept[0].is_Rational or kept[1].is_Rational):
+        return None                                        # flatten's rules for two
+    return _plain_product([f for a in kept for f in (a.args if type(a) is sp.Mul else (a,))])
 
 
 def _replaced(e, mapping, memo, rebuild):
@@ -400,12 +417,16 @@ def _plain_function(cls):
 
 
 def _merges(o):
-    """Whether the factor ``o`` may combine in ``Mul.flatten`` with anything but a factor
-    of the same base: a number or a power of a number (3**x * 2**x, sqrt(2) * sqrt(3)),
-    I, an exponential (exp(x) * exp(y)), an order term or anything non-commutative."""
-    return (o.is_Number or o is sp.S.ImaginaryUnit or o.is_Order or not o.is_commutative
-            or (o.is_Pow and o.base.is_Number) or isinstance(o, sp.exp)
-            or not isinstance(o, sp.Expr))
+    """Whether the factor or term ``o`` may combine in ``flatten`` with anything but a
+    factor of the same base (a term of the same non-numeric part): a number, an
+    infinity or a power of a number (3**x * 2**x, sqrt(2) * sqrt(3)), I, an exponential
+    (exp(x) * exp(y)), an order term, a bounds object, anything non-commutative."""
+    return (o.is_Number or o is sp.S.ImaginaryUnit or o is sp.S.ComplexInfinity
+            or o.is_Order or not o.is_commutative or (o.is_Pow and o.base.is_Number)
+            or isinstance(o, _COMBINING) or not isinstance(o, sp.Expr))
+
+
+_COMBINING = (sp.exp, sp.AccumBounds)
 
 
 def _product_with(args, i, da):
@@ -470,7 +491,7 @@ def _plain_product(factors):
             coeff *= o
             continue
         b = o.base if o.is_Pow else o
-        if _merges(o) or b in bases:
+        if _merges(o) or b in bases or type(o) is sp.Mul:
             return None
         bases.add(b)
         out.append(o)

@@ -147,7 +147,7 @@ def _random_factor(rng, depth=0):
     n = sp.Symbol("n", commutative=False)
     atoms = [x, y, z, sp.Symbol("a", positive=True), x + y, x * y + 1, sp.sin(x), sp.cos(y),
              sp.exp(x), sp.sqrt(2), sp.pi, sp.E, sp.I, sp.Float(1.5), sp.Rational(3, 2),
-             sp.Integer(-1), sp.Integer(2), n]
+             sp.Integer(-1), sp.Integer(2), n, sp.zoo, sp.oo, sp.nan]
     r = rng.random()
     if depth > 1 or r < 0.5:
         return rng.choice(atoms)
@@ -210,3 +210,17 @@ def test_plain_sum_is_add_argument_by_argument():
         if built is not None:
             add = sp.Add(*terms)
             assert built == add and type(built) is type(add) and built.args == add.args, terms
+
+
+def test_substitute_is_xreplace_argument_by_argument():
+    """Rebuilt sums and products (without ``flatten`` where nothing combines) are those
+    ``xreplace`` builds, on random expressions and replacements."""
+    rng = random.Random(11)
+    x, y, z = sp.symbols("x y z")
+    for _ in range(600):
+        e = sp.Add(*[sp.Mul(*[_random_factor(rng) for _ in range(rng.randint(1, 4))])
+                     for _ in range(rng.randint(1, 4))])
+        mapping = {s_: rng.choice([_random_factor(rng), sp.S.Zero, sp.S.One, 2 * s_])
+                   for s_ in rng.sample([x, y, z], rng.randint(1, 3))}
+        built, sympys = dag.substitute(e, mapping), e.xreplace(mapping)
+        assert built == sympys and built.args == sympys.args, (e, mapping)
