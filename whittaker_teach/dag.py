@@ -103,7 +103,30 @@ def power(base, exp):
             and not (len(base.args) == 2
                      and any(sp.I in sp.Mul.make_args(a) for a in base.args))):
         return sp.Pow(base, exp, evaluate=False)
+    if base.is_Mul and exp.is_Integer and exp not in (0, 1) and base.is_commutative:
+        r = _power_of_product(base, exp)
+        if r is not None:
+            return r
     return sp.Pow(base, exp)
+
+
+def _power_of_product(base, k):
+    """``base**k`` for a product ``base`` and an integer ``k``, as ``Mul._eval_power``
+    builds it: each factor to the power k (a power's exponent multiplied by k, which
+    is exact for an integer k), then their product; each power by :func:`power` (a
+    power of a sum without its queries) and the product by :func:`_plain_product`.
+    None where ``flatten`` would do more than multiply numbers and sort.
+
+    >>> x, y = sp.symbols("x y")
+    >>> e = 3 * x * sp.sqrt(x**2 + y) / 2
+    >>> _power_of_product(e, sp.Integer(-2)) == sp.Pow(e, -2)
+    True
+    """
+    parts = []
+    for f in base.args:
+        p = power(f.base, f.exp * k) if f.is_Pow else power(f, k)
+        parts.extend(p.args if type(p) is sp.Mul else (p,))
+    return _plain_product(parts)
 
 
 def substitute(expr, mapping, memo=None):

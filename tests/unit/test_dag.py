@@ -224,3 +224,17 @@ def test_substitute_is_xreplace_argument_by_argument():
                    for s_ in rng.sample([x, y, z], rng.randint(1, 3))}
         built, sympys = dag.substitute(e, mapping), e.xreplace(mapping)
         assert built == sympys and built.args == sympys.args, (e, mapping)
+
+
+def test_power_of_a_product_is_sympys_power_argument_by_argument():
+    """A product to an integer power, factor by factor, is SymPy's ``Pow``."""
+    rng = random.Random(13)
+    cases = 0
+    while cases < 1500:
+        base = sp.Mul(*[_random_factor(rng) for _ in range(rng.randint(2, 4))])
+        if type(base) is not sp.Mul:
+            continue
+        cases += 1
+        k = sp.Integer(rng.choice([-3, -2, -1, 2, 3]))
+        built, sympys = dag.power(base, k), sp.Pow(base, k)
+        assert built == sympys and built.args == sympys.args, (base, k)
