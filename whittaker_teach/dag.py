@@ -21,7 +21,7 @@ True
 import sympy as sp
 
 __all__ = ["tree_size", "substitute", "renamed", "bottom_up", "instances", "along", "zeroed", "max_depth",
-           "expanded_terms", "diff", "power"]
+           "expanded_terms", "diff", "power", "mul", "add"]
 
 
 def tree_size(expr, limit):
@@ -256,6 +256,27 @@ def _rebuilt(e, args):
         if r is not None:
             return r
     return e.func(*args)
+
+
+def mul(*factors):
+    """``Mul(*factors)``, the same expression, built without ``flatten`` where nothing
+    in it combines (:func:`_plain`).
+
+    >>> x, y = sp.symbols("x y")
+    >>> mul(3, x + y, sp.cos(x)) == sp.Mul(3, x + y, sp.cos(x))
+    True
+    """
+    factors = [sp.sympify(f) for f in factors]
+    r = _plain(sp.Mul, factors)
+    return sp.Mul(*factors) if r is None else r
+
+
+def add(*terms):
+    """``Add(*terms)``, the same expression, built without ``flatten`` where no two
+    terms combine (:func:`_plain_sum`)."""
+    terms = [sp.sympify(t) for t in terms]
+    r = _plain_sum(terms)
+    return sp.Add(*terms) if r is None else r
 
 
 def _plain(t, args):

@@ -36,7 +36,7 @@ import mpmath
 import sympy as sp
 
 from .coordinates import name as _name, sign_assumptions as _assume
-from .dag import along, diff, power, renamed, substitute, tree_size, zeroed
+from .dag import add, along, diff, mul, power, renamed, substitute, tree_size, zeroed
 from .errors import ModelError, ModelTypeError, guarded
 from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
                       velocity_form, whittaker_forms)
@@ -244,15 +244,15 @@ class Reduction:
             S, d = self.system, self._d
             terms = [d(f, S.q[self._eps])]
             for c in self._nus:
-                terms += [d(f, self._qp[c]) * self._qpp[c], d(f, S.q[c]) * self._qp[c]]
-            out = memo[f] = sp.Add(*terms)      # one sum: no partial sums re-flattened
+                terms += [mul(d(f, self._qp[c]), self._qpp[c]), mul(d(f, S.q[c]), self._qp[c])]
+            out = memo[f] = add(*terms)         # one sum: no partial sums re-flattened
         return out
 
     def _chain(self, a, f, z):
         """a * df/dz, built only when df/dz is not 0 (a product with a factor 0 asks
         whether every other factor is finite, a deep query on a large sum)."""
         df = self._d(f, z)
-        return sp.S.Zero if df == 0 else a * df
+        return sp.S.Zero if df == 0 else mul(a, df)
 
     def _d(self, f, z):
         """df/dz, as ``f.diff(z)`` builds it, each shared subexpression differentiated once
@@ -288,7 +288,7 @@ class Reduction:
         for P, qs in zip(self._Pstar, self._qdstar):
             term = self._D(d(qs, qp)) - d(qs, q)
             if term != 0:           # P*0 would ask whether every factor of P is finite
-                e -= P * term
+                e -= mul(P, term)
         return e
 
     def _accelerations(self):

@@ -45,7 +45,7 @@ import sympy as sp
 from sympy.core.function import AppliedUndef
 
 from .coordinates import T, name, sign_assumptions
-from .dag import diff, instances, max_depth, power, substitute, zeroed
+from .dag import add, diff, instances, max_depth, mul, power, substitute, zeroed
 from .errors import ModelError, ModelTypeError, guarded
 from .linear import lu_solve
 from .reduction import Reduction
@@ -374,8 +374,8 @@ class ChaplyginSystem:
 
     def _dt(self, f):
         """Total time derivative of f(q_sigma, qdot_sigma) along a motion."""
-        return sp.Add(*[t for c in self._sig for t in (self._d(f, self.q[c]) * self.qd[c],
-                                                        self._d(f, self.qd[c]) * self.qdd[c])])
+        return add(*[t for c in self._sig for t in (mul(self._d(f, self.q[c]), self.qd[c]),
+                                                     mul(self._d(f, self.qd[c]), self.qdd[c]))])
 
     # ----- (1.4) ----------------------------------------------------------
     def _eom(self):
@@ -387,7 +387,7 @@ class ChaplyginSystem:
                 qd, q = self.qd[c], self.q[c]
                 e = self._dt(self._d(Lt, qd)) - self._d(Lt, q)
                 for Pb, phi in zip(P, self._phi.values()):
-                    e -= Pb * (self._dt(self._d(phi, qd)) - self._d(phi, q))
+                    e -= mul(Pb, self._dt(self._d(phi, qd)) - self._d(phi, q))
                 eqs.append(e if self._large else collected(e, self._velocity_symbols()))
             self._cache["eom"] = eqs
         return self._cache["eom"]
@@ -487,7 +487,7 @@ class ChaplyginSystem:
         point = self._require_regular(M, what, sample)
         n = M.rows
         if all(M[i, j] is sp.S.Zero for i in range(n) for j in range(n) if i != j):
-            return [-rest[i] * power(M[i, i], -1) for i in range(n)]
+            return [mul(-rest[i], power(M[i, i], -1)) for i in range(n)]
         small = within_size(list(M), PIVOT_BY_VALUE_NODES)
         try:
             return lu_solve(M, -rest) if small else lu_solve(M, -rest, _zero_at(point))

@@ -238,3 +238,14 @@ def test_power_of_a_product_is_sympys_power_argument_by_argument():
         k = sp.Integer(rng.choice([-3, -2, -1, 2, 3]))
         built, sympys = dag.power(base, k), sp.Pow(base, k)
         assert built == sympys and built.args == sympys.args, (base, k)
+
+
+def test_mul_and_add_are_sympys_argument_by_argument():
+    """``dag.mul`` and ``dag.add`` (no ``flatten`` where nothing combines) build SymPy's
+    ``Mul`` and ``Add``, two arguments with a rational among them included."""
+    rng = random.Random(17)
+    for _ in range(1500):
+        args = [_random_factor(rng) for _ in range(rng.randint(1, 4))]
+        for ours, sympys in ((dag.mul, sp.Mul), (dag.add, sp.Add)):
+            built, ref = ours(*args), sympys(*args)
+            assert built == ref and type(built) is type(ref) and built.args == ref.args, args
