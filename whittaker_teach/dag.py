@@ -502,7 +502,9 @@ def _power_rule(e, dbase):
     constant exponent: the same expression, b**x / b merged into b**(x - 1) directly
     where x is a rational number (a symbolic x stays apart: x**y * x**-1), b is a sum,
     a symbol or a plain function and nothing else in the product has the base b
-    (``flatten`` then merges only these two); else SymPy's own products.  The base
+    (``flatten`` then merges only these two; where dbase * x has a power of b, SymPy
+    divides it by b first, which may leave a number times a sum that it distributes);
+    else SymPy's own products.  The base
     is not a number (it holds the variable differentiated by; 1/sqrt(2 + I) would
     evaluate otherwise).
 
@@ -517,27 +519,45 @@ def _power_rule(e, dbase):
                           or (_plain_function(type(b)) and not _merges(b))):
         k = x - 1
         own = () if k is sp.S.Zero else (b,) if k is sp.S.One else (sp.Pow(b, k),)
-        r = _plain_product(own + (scaled.args if type(scaled) is sp.Mul else (scaled,)))
-        if r is not None:
-            return r
+        rest = scaled.args if type(scaled) is sp.Mul else (scaled,)
+        if all((f.base if f.is_Pow else f) != b for f in rest):   # else scaled / b first
+            r = _plain_product(own + rest)
+            if r is not None:
+                return r
     return e * (scaled / b)
 
 
 def _plain_product(factors):
-    """``Mul(*factors)`` where ``flatten`` would only multiply the rational numbers and
-    sort the rest: every other factor plain (:func:`_merges`) and of its own base, and
-    not a number times a single sum (which ``flatten`` distributes); None otherwise.
-    (``flatten``'s rules for exactly two factors are the caller's to rule out.)"""
+    """``Mul(*factors)`` where ``flatten`` would only multiply the rational numbers, add
+    the rational exponents of a base met more than once (a sum, a symbol or a function
+    that a power leaves as it is, such as sin: b**(x1 + x2), as ``flatten`` builds it)
+    and sort; every factor plain (:func:`_merges`) and no number times a single sum
+    (which ``flatten`` distributes).  None otherwise.  (``flatten``'s rules for exactly
+    two factors are the caller's to rule out.)"""
     from sympy.core.mul import _mulsort
-    coeff, out, bases = sp.S.One, [], set()
+    coeff, first, exps = sp.S.One, [], {}
     for o in factors:
         if o.is_Rational:
             coeff *= o
             continue
-        b = o.base if o.is_Pow else o
-        if _merges(o) or b in bases or type(o) is sp.Mul:
+        if _merges(o) or type(o) is sp.Mul:
             return None
-        bases.add(b)
+        b, x = (o.base, o.exp) if o.is_Pow else (o, sp.S.One)
+        if b in exps:
+            exps[b].append(x)
+        else:
+            exps[b] = [x]
+            first.append(o)
+    out = []
+    for o in first:
+        b = o.base if o.is_Pow else o
+        xs = exps[b]
+        if len(xs) > 1:
+            o = _merged_power(b, xs)
+            if o is None:
+                return None
+            if o is sp.S.One:
+                continue
         out.append(o)
     if coeff.is_zero or (len(out) == 1 and coeff is not sp.S.One and out[0].is_Add):
         return None
@@ -547,6 +567,22 @@ def _plain_product(factors):
     if len(out) < 2:
         return out[0] if out else sp.S.One
     return sp.Mul._exec_constructor_postprocessors(sp.Mul._from_args(out, True))
+
+
+def _merged_power(b, xs):
+    """b**sum(xs) as ``flatten`` merges powers of one base: for rational exponents and a
+    base that a power leaves as it is (a sum, a symbol, a function without its own
+    ``_eval_power``); 1 for a zero sum; None where ``flatten`` may do otherwise."""
+    if not all(x.is_Rational for x in xs):
+        return None                 # x**y * x**2: exponents of other kinds stay apart
+    if not (isinstance(b, (sp.Add, sp.Symbol))
+            or (isinstance(b, sp.Function) and type(b)._eval_power is sp.Expr._eval_power)):
+        return None
+    total = sp.Add(*xs)
+    if total is sp.S.Zero:
+        return None if b.is_Add and b.has(sp.oo, -sp.oo, sp.zoo) else sp.S.One
+    p = b if total is sp.S.One else power(b, total)
+    return p if p is b or (p.is_Pow and p.base == b) else None
 
 
 def _plain_sum(terms):

@@ -187,6 +187,9 @@ def test_power_rule_is_sympys_product_argument_by_argument():
     x, y = sp.symbols("x y")
     exps = [2, 3, -1, -2, sp.Rational(1, 2), sp.Rational(-1, 2), sp.Rational(3, 2), y,
             sp.Float(0.5)]
+    z, a = sp.symbols("z a")
+    e = z**3                # z / z leaves 3*(a + 1.5) to SymPy, which distributes it
+    assert dag._power_rule(e, z * (a + 1.5)).args == (e * (z * (a + 1.5) * 3 / z)).args
     cases = 0
     while cases < 1500:
         e = sp.Pow(_random_factor(rng), rng.choice(exps))
