@@ -21,7 +21,7 @@ True
 import sympy as sp
 
 __all__ = ["tree_size", "substitute", "renamed", "bottom_up", "instances", "along", "zeroed", "max_depth",
-           "expanded_terms", "diff", "power", "mul", "add"]
+           "expanded_terms", "diff", "power", "mul", "add", "polynomial_in"]
 
 
 def tree_size(expr, limit):
@@ -226,6 +226,34 @@ def zeroed(expr, symbols, memo=None):
             r = memo[e] = _zeroed(e, zero, walk)
         return r
     return walk(sp.sympify(expr))
+
+
+def polynomial_in(expr, s):
+    """Whether ``expr`` is a polynomial in the symbol ``s`` with coefficients free of it
+    and of infinities: ``s`` enters only through sums, products and positive integer
+    powers.  Then setting ``s`` to 0 meets no pole, and :func:`zeroed` gives exactly
+    what ``xreplace`` gives.
+
+    >>> x, y = sp.symbols("x y")
+    >>> polynomial_in(x**2*sp.sin(y)/y + x, x), polynomial_in(x/(x + y), x)
+    (True, False)
+    """
+    memo, seen = {}, {}
+
+    def ok(e):
+        r = seen.get(e)
+        if r is None:
+            if not _has(e, s, memo):
+                r = not _singular(e, memo)
+            elif e is s:
+                r = True
+            elif e.is_Add or e.is_Mul:
+                r = all(ok(a) for a in e.args)
+            else:
+                r = e.is_Pow and e.exp.is_Integer and e.exp > 0 and ok(e.base)
+            seen[e] = r
+        return r
+    return ok(sp.sympify(expr))
 
 
 def _zeroed(e, zero, walk):

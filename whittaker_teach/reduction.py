@@ -36,7 +36,8 @@ import mpmath
 import sympy as sp
 
 from .coordinates import name as _name, sign_assumptions as _assume
-from .dag import add, along, diff, mul, power, renamed, substitute, tree_size, zeroed
+from .dag import (add, along, diff, mul, polynomial_in, power, renamed, substitute,
+                  tree_size, zeroed)
 from .errors import ModelError, ModelTypeError, guarded
 from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
                       velocity_form, whittaker_forms)
@@ -88,7 +89,10 @@ def _velocity_coefficients(Omega, v, memo=None, sample=None, sign=1):
                 seed=13).holds:
             raise ModelError(_NOT_QUADRATIC)
     at0 = {}
-    A = [substitute(e, {v: sp.S.Zero}, at0) for e in (d2 / 2, d1, Omega)]
+    if polynomial_in(Omega, v):     # no pole at v = 0: each product with v is 0 at once
+        A = [zeroed(e, [v], at0) for e in (d2 / 2, d1, Omega)]
+    else:
+        A = [substitute(e, {v: sp.S.Zero}, at0) for e in (d2 / 2, d1, Omega)]
     if any(a.has(sp.zoo, sp.nan, sp.oo, -sp.oo) for a in A):
         at = {}
         s = sp.Integer(sign)

@@ -252,3 +252,26 @@ def test_mul_and_add_are_sympys_argument_by_argument():
         for ours, sympys in ((dag.mul, sp.Mul), (dag.add, sp.Add)):
             built, ref = ours(*args), sympys(*args)
             assert built == ref and type(built) is type(ref) and built.args == ref.args, args
+
+
+def test_polynomial_in_lets_zeroed_stand_for_xreplace():
+    """Where ``polynomial_in(e, x)`` holds, ``zeroed(e, [x])`` is ``e.xreplace({x: 0})``
+    argument by argument; it fails for x under a root, in a denominator or in a
+    function, and for an infinite coefficient (0 * oo is nan, not 0)."""
+    x, y = sp.symbols("x y")
+    w = sp.Symbol("w", infinite=True)
+    assert not dag.polynomial_in(x / (x + y), x)
+    assert not dag.polynomial_in(sp.sqrt(x**2 + y) * x, x)
+    assert not dag.polynomial_in(sp.sin(x) + x, x)
+    assert not dag.polynomial_in(w * x + y, x)
+    assert dag.polynomial_in(x**3 * sp.sqrt(y) / y + 2 * x * y + sp.tan(y), x)
+    rng = random.Random(19)
+    held = 0
+    for _ in range(1500):
+        e = sp.Add(*[sp.Mul(*[_random_factor(rng) for _ in range(rng.randint(1, 4))])
+                     for _ in range(rng.randint(1, 4))])
+        if dag.polynomial_in(e, x):
+            held += 1
+            built, sympys = dag.zeroed(e, [x]), e.xreplace({x: sp.S.Zero})
+            assert built == sympys and built.args == sympys.args, e
+    assert held > 100
