@@ -516,12 +516,21 @@ def _factor_list(p):
     return c, [(R.from_dict(f), k) for f, k in factors]
 
 
+def _positive_squares(q):
+    """Whether ``q`` is a1 x1**2 + a2 x2**2 + ... (+ a0) with every a positive, such as
+    sin**2 + cos**2 or tan**2 + 1: positive at every real point, so it has no factor of
+    degree one (which vanishes somewhere), and of degree two it is then irreducible."""
+    return len(q) > 1 and all(c > 0 and (sum(m) == 0 or sorted(m)[-1] == sum(m) == 2)
+                              for m, c in q.iterterms())
+
+
 def _factor_list_of(p):
     """``p.factor_list()`` over the integers, at once where the answer is plain: once the
     integer and monomial contents are out, a polynomial of degree one in a generator x
     whose x-coefficient is a single term is irreducible (a factor would divide that term,
-    and so every term).  Most coefficients of a derivation are such; ``factor_list``
-    spends half a millisecond on each.  A large polynomial in many generators
+    and so every term), and so is a sum of positive multiples of squares of single
+    generators (:func:`_positive_squares`).  Most coefficients of a derivation are such;
+    ``factor_list`` spends half a millisecond on each.  A large polynomial in many generators
     (``FACTOR_TERMS_LIMIT``, ``FACTOR_GENERATORS_LIMIT``) keeps its contents out and
     is left as one factor (a form to read; equal to the input either way)."""
     R = p.ring
@@ -540,6 +549,8 @@ def _factor_list_of(p):
         degrees = [m[i] for m in q.itermonoms()]
         if max(degrees) == 1 and degrees.count(1) == 1:
             return c, factors + [(q, 1)]
+    if _positive_squares(q):
+        return c, factors + [(q, 1)]
     if len(q) > FACTOR_TERMS_LIMIT and sum(map(any, zip(*q.itermonoms()))) \
             > FACTOR_GENERATORS_LIMIT:
         return c, factors + [(q, 1)]

@@ -127,6 +127,12 @@ def test_the_ops_bound_is_never_below_count_ops():
     2 * c * sp.tan(t) - a**2 * t**2 * sp.tan(t) - a**2 * t,
     6 * a * b + 4 * a,
     a**2 - b**2,                                  # no generator of degree one: factor_list
+    a**2 * sp.sin(t)**2 + a**2 * sp.cos(t)**2,     # a**2 out, then positive squares
+    3 * sp.tan(t)**2 + 5,
+    a**2 + 2 * b**2 + c**2 + 4,
+    a**2 + 2 * a * b + b**2,                      # a square, not a sum of squares
+    a**2 + b**2 - 1,
+    a**4 + 4 * b**4,                              # reducible (Sophie Germain): not squares
     (a * b + 1) * (a + b),
     -7 * a**3,
     -4 * a * b,
@@ -311,3 +317,16 @@ def test_collected_shortcut_for_a_sum_free_of_the_symbols(monkeypatch):
     slow = [rewrite.collected(e, w) for e in cases]
     assert [sp.srepr(a) for a in fast] == [sp.srepr(b) for b in slow]
     assert taken > 50
+
+
+def test_sums_of_positive_squares_are_irreducible_as_factor_list_says():
+    from sympy.polys.domains import ZZ
+    from sympy.polys.rings import ring
+    import random
+    R, *xs = ring("x0:4", ZZ)
+    rng = random.Random(2)
+    for _ in range(300):
+        p = R(rng.randint(0, 3)) + sum(rng.randint(1, 5) * x**2 for x in rng.sample(xs, 2))
+        if polywalk._positive_squares(p):
+            c, factors = p.factor_list()
+            assert len(factors) == 1 and factors[0][1] == 1, p
