@@ -147,7 +147,14 @@ def _exact_ways(lhs, rhs):
     not shown exactly.  Before any ``expand``, each pair is screened
     (:func:`expand_may_equal`, then :func:`expand_may_vanish` on the difference): one
     that ``expand`` cannot make zero spares every attempt, and a pair screened out
-    spares building the differences; then the smallest differences are tried first."""
+    spares building the differences; then the smallest differences are tried first.
+    A pair whose sides are equal as built is "identical as built" without a screen."""
+    pairs = [(a, b) for a, b in zip(lhs, rhs)
+             if not (a is b or (hash(a) == hash(b) and a == b))]     # hashes are kept
+    same = ["identical as built"] * (len(lhs) - len(pairs))
+    if not pairs:
+        return same
+    lhs, rhs = [a for a, _ in pairs], [b for _, b in pairs]
     if not all(expand_may_equal(a, b) for a, b in zip(lhs, rhs)):
         return None                    # before building any difference of large sides
     if any(_difference_above(a, b, EXACT_SIZE_LIMIT) for a, b in zip(lhs, rhs)):
@@ -162,7 +169,7 @@ def _exact_ways(lhs, rhs):
         if not way:
             return None
         ways.append(way)
-    return ways
+    return same + ways
 
 
 def _difference_above(a, b, limit):
