@@ -499,11 +499,16 @@ class ChaplyginSystem:
         :class:`.verify.At`, or ModelError (a singular kinetic energy, 1.4)."""
         rng = random.Random(7)
         rows = M.tolist()
+        diagonal = all(e is sp.S.Zero for i, row in enumerate(rows) for j, e in enumerate(row)
+                       if i != j)
         with mpmath.workdps(DPS):
             for _ in range(3):
                 at = At(sample(rng))
                 try:
-                    d = mpmath.det(mpmath.matrix([[at(e) for e in row] for row in rows]))
+                    if diagonal:            # the determinant is the product of the diagonal
+                        d = mpmath.fprod(at(row[i]) for i, row in enumerate(rows))
+                    else:
+                        d = mpmath.det(mpmath.matrix([[at(e) for e in row] for row in rows]))
                 except (ZeroDivisionError, ValueError, OverflowError, TypeError):
                     continue
                 except (Unevaluable, KeyError) as err:
