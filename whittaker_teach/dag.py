@@ -162,15 +162,73 @@ def _renamed(e, mapping, memo):
     return _replaced(e, mapping, memo, _resorted)
 
 
+class _NoKey(Exception):
+    """A node that :func:`_order_key` does not order (a class with its own ``compare``,
+    a set in its content): the caller sorts as SymPy does."""
+
+
+_ORDER_KEYS = {}
+_RANKS = {}
+_ORDER_KEYS_LIMIT = 200_000
+
+
+def _order_key(e):
+    """A key whose order is ``Basic.compare``'s (the order SymPy sorts the terms of a sum
+    and the factors of a product in), built once per subexpression: the class's place
+    in ``ordering_of_classes`` (then its name), the length of the hashable content, then
+    the keys of its items.  ``compare`` walks both expressions again for every pair
+    that a sort compares, and looks each class name up in a list.
+
+    >>> x, y = sp.symbols("x y")
+    >>> terms = [sp.sin(x), y**2, x, 3*x*y]
+    >>> sorted(terms, key=_order_key) == sorted(terms, key=sp.core.add._args_sortkey)
+    True
+    """
+    t = type(e)
+    k = _ORDER_KEYS.get((t, e))
+    if k is None:
+        rank = _RANKS.get(t)
+        if rank is None:
+            from sympy.core.basic import Basic, ordering_of_classes
+            if t.compare is not Basic.compare:
+                raise _NoKey(t)
+            name = t.__name__
+            i = ordering_of_classes.index(name) if name in ordering_of_classes else None
+            rank = _RANKS[t] = (len(ordering_of_classes) + 1, name) if i is None else (i, "")
+        content = e._hashable_content()
+        items = []
+        for x in content:
+            if isinstance(x, sp.Basic):
+                items.append(_order_key(x))
+            elif isinstance(x, (frozenset, list, dict, set)) or (
+                    isinstance(x, tuple) and any(isinstance(y, sp.Basic) for y in x)):
+                raise _NoKey(t)
+            else:
+                items.append(x)             # a name, an index, an assumption (name, value)
+        k = (rank, len(content), tuple(items))
+        if len(_ORDER_KEYS) >= _ORDER_KEYS_LIMIT:
+            _ORDER_KEYS.clear()
+        _ORDER_KEYS[t, e] = k
+    return k
+
+
+def _sort_args(args):
+    """``_addsort`` / ``_mulsort`` (``args.sort`` in ``Basic.compare``'s order), by
+    :func:`_order_key`, or by ``compare`` itself where a node has no key."""
+    try:
+        args.sort(key=_order_key)
+    except (_NoKey, TypeError):
+        from sympy.core.add import _addsort
+        _addsort(args)
+
+
 def _resorted(e, args):
     """``e`` with new ``args``: a commutative sum or product only re-sorted (renaming
     symbols changes their order, never what combines), a power by :func:`power`."""
-    from sympy.core.add import _addsort
-    from sympy.core.mul import _mulsort
     t = type(e)
     if (t is sp.Add or t is sp.Mul) and e.is_commutative:
         rest = [a for a in args if not a.is_Number]
-        (_addsort if t is sp.Add else _mulsort)(rest)
+        _sort_args(rest)
         return t._from_args([a for a in args if a.is_Number] + rest)
     if t is sp.Pow:
         return power(*args)
@@ -562,7 +620,6 @@ def _plain_product(factors):
     and sort; every factor plain (:func:`_merges`) and no number times a single sum
     (which ``flatten`` distributes).  None otherwise.  (``flatten``'s rules for exactly
     two factors are the caller's to rule out.)"""
-    from sympy.core.mul import _mulsort
     coeff, first, exps = sp.S.One, [], {}
     for o in factors:
         if o.is_Rational:
@@ -589,7 +646,7 @@ def _plain_product(factors):
         out.append(o)
     if coeff.is_zero or (len(out) == 1 and coeff is not sp.S.One and out[0].is_Add):
         return None
-    _mulsort(out)
+    _sort_args(out)
     if coeff is not sp.S.One:
         out.insert(0, coeff)
     if len(out) < 2:
@@ -623,7 +680,6 @@ def _plain_sum(terms):
     >>> _plain_sum([x*y, -2*sp.sin(x), x + y**2]) == sp.Add(x*y, -2*sp.sin(x), x + y**2)
     True
     """
-    from sympy.core.add import _addsort
     out, seen = [], set()
     for t in terms:
         for o in (t.args if type(t) is sp.Add else (t,)):
@@ -644,7 +700,7 @@ def _plain_sum(terms):
             out.append(o)
     if len(out) < 2:
         return out[0] if out else sp.S.Zero
-    _addsort(out)
+    _sort_args(out)
     return sp.Add._exec_constructor_postprocessors(sp.Add._from_args(out, True))
 
 

@@ -275,3 +275,24 @@ def test_polynomial_in_lets_zeroed_stand_for_xreplace():
             built, sympys = dag.zeroed(e, [x]), e.xreplace({x: sp.S.Zero})
             assert built == sympys and built.args == sympys.args, e
     assert held > 100
+
+
+def test_order_key_sorts_as_basic_compare():
+    """Lists sorted by ``_order_key`` are sorted as SymPy sorts them (``Basic.compare``):
+    random factors and terms, functions of time and their derivatives, dummies,
+    symbols with assumptions."""
+    from sympy.core.add import _args_sortkey
+    rng = random.Random(23)
+    t = sp.Symbol("t")
+    extra = [sp.Function("x")(t), sp.Function("x")(t).diff(t), sp.Function("y")(t).diff(t, 2),
+             sp.Dummy("d"), sp.Symbol("p", positive=True), sp.Symbol("p"), sp.Float(0.5),
+             sp.Rational(1, 3), sp.Integer(7), sp.tan(t), sp.Symbol("x")]
+    for _ in range(1500):
+        items = [rng.choice(extra) if rng.random() < 0.3 else _random_factor(rng)
+                 for _ in range(rng.randint(2, 6))]
+        items = list(dict.fromkeys(items))
+        try:
+            ours = sorted(items, key=dag._order_key)
+        except dag._NoKey:
+            continue
+        assert ours == sorted(items, key=_args_sortkey), items
