@@ -819,6 +819,11 @@ def _residuals(lhs, rhs, pts, points):
         while used < points and attempts < 4 * points:
             i = attempts
             attempts += 1
+            if block is not None and i < POINTS:
+                r = _raw_residual(vecs, i, prec)
+                if r is not None:          # every value raw and finite: rounded as below
+                    worst, used = max(worst, r), used + 1
+                    continue
             try:
                 if block is not None and i < POINTS:
                     vals = [(_at(a, va, i, pts), _at(b, vb, i, pts))
@@ -836,6 +841,28 @@ def _residuals(lhs, rhs, pts, points):
                 worst = max(worst, float(abs(a - b) / scale))
             used += 1
     return worst, used
+
+
+_FINITE_SPECIAL = (libmp.fnan, libmp.finf, libmp.fninf)
+
+
+def _raw_residual(vecs, i, prec):
+    """The largest ``|a - b| / max(1, |a|, |b|)`` at point ``i`` over the pairs of
+    vectors, in raw mpf arithmetic with the operations and rounding of the mpf objects'
+    (so the same float); None when a value there is a marker or not finite."""
+    worst = 0.0
+    for va, vb in vecs:
+        a, b = va[i], vb[i]
+        if type(a) is not tuple or type(b) is not tuple or a in _FINITE_SPECIAL \
+                or b in _FINITE_SPECIAL:
+            return None
+        scale = libmp.fone
+        for x in (libmp.mpf_abs(a, prec, "n"), libmp.mpf_abs(b, prec, "n")):
+            if libmp.mpf_gt(x, scale):
+                scale = x
+        d = libmp.mpf_abs(libmp.mpf_sub(a, b, prec, "n"), prec, "n")
+        worst = max(worst, libmp.to_float(libmp.mpf_div(d, scale, prec, "n"), rnd="n"))
+    return worst
 
 
 class At:

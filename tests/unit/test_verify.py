@@ -175,3 +175,25 @@ def test_at_replaces_symbols_at_evaluation():
         assert dblock[big] is block[big]          # one evaluation, shared
         assert derived.involves(x**2 - y) and not derived.involves(big)
         assert [float(v) for v in (derived[0][y], base[0][x]**2)] == [float(base[0][x]**2)] * 2
+
+
+def test_raw_residual_is_the_mpf_objects_residual():
+    """The residual in raw arithmetic gives the float the mpf objects give, and None at a
+    marker or an infinity (the point is then left to the general path)."""
+    import random
+
+    import mpmath
+    from whittaker_teach import verify as V
+    rng = random.Random(3)
+    with mpmath.workdps(V.DPS):
+        prec = mpmath.mp.prec
+        for _ in range(300):
+            pairs = [(mpmath.mpf(rng.uniform(-3, 3)) / 7, mpmath.mpf(rng.uniform(-3, 3)) / 7
+                      * (1 + mpmath.mpf(10) ** -rng.randint(1, 40)))
+                     for _ in range(rng.randint(1, 4))]
+            vecs = [([a._mpf_], [b._mpf_]) for a, b in pairs]
+            expected = max(float(abs(a - b) / max(1, abs(a), abs(b))) for a, b in pairs)
+            assert V._raw_residual(vecs, 0, prec) == expected
+        inf = mpmath.mpf("inf")._mpf_
+        assert V._raw_residual([([inf], [inf])], 0, prec) is None
+        assert V._raw_residual([([V._NOT_RAW], [inf])], 0, prec) is None
