@@ -703,7 +703,13 @@ class _Derived:
         """Whether ``e`` contains a symbol of ``at`` (remembered per node)."""
         r = self._involves.get(e)
         if r is None:
-            r = self._involves[e] = e in self.symbols or any(self.involves(a) for a in e.args)
+            r = e in self.symbols
+            if not r:
+                for a in e.args:
+                    if self.involves(a):
+                        r = True
+                        break
+            self._involves[e] = r
         return r
 
     def _at_base(self, x, i):
