@@ -16,7 +16,7 @@ from __future__ import annotations
 import sympy as sp
 
 from .reading import check_reading, nielsen_forms, total_derivative_form
-from .steps import Step, eq, notation, partial
+from .steps import Step, eq, notation, partial, tex, text
 from .verify import check_identity
 
 __all__ = ["nielsen", "nielsen_steps"]
@@ -48,7 +48,7 @@ def nielsen_steps(red):
     dL, nus = n["2.1"], red._nus
     qp, q = red._qp, S.q
     x = red.independent
-    xl = sp.latex(x)
+    xl = tex(x)
     dform = total_derivative_form(red)
     st = [Step("2.1", r"the total derivative of $L^*$ ($q''$ appears explicitly)",
                [eq(notation(f"dL*/d{x}", rf"\frac{{d L^{{*}}}}{{d {xl}}}"), dform)],
@@ -57,14 +57,12 @@ def nielsen_steps(red):
 
     def claim22(z, f, ft):
         """d/dq'(df/dx) = d/dx(df/dq') + df/dq, in the paper's notation."""
-        zt, zl = sp.pretty(qp[z], use_unicode=True), sp.latex(qp[z])
-        qt, ql = sp.pretty(q[z], use_unicode=True), sp.latex(q[z])
+        zt, zl = text(qp[z], use_unicode=True), tex(qp[z])
         lhs = notation(f"∂/∂{zt}(d{f}/d{x})",
                        rf"\frac{{\partial}}{{\partial {zl}}}\frac{{d {ft}}}{{d {xl}}}")
         rhs = (notation(f"d/d{x}(∂{f}/∂{zt})",
                         rf"\frac{{d}}{{d {xl}}}\frac{{\partial {ft}}}{{\partial {zl}}}")
                + partial(f, ft, q[z]))
-        del qt, ql
         return eq(lhs, rhs)
     st.append(Step("2.2", r"$\partial/\partial q'_\nu$ of (2.1)",
                    [claim22(c, "L*", "L^{*}") for c in nus], check_identity(
@@ -75,7 +73,7 @@ def nielsen_steps(red):
     if S.dependent_coordinates:
         lhs = [red._d(red._D(qs), qp[c]) for qs in red._qdstar for c in nus]
         rhs = [red._D(red._d(qs, qp[c])) + red._d(qs, q[c]) for qs in red._qdstar for c in nus]
-        shown = [claim22(c, sp.pretty(S.qd[d]) + "*", sp.latex(S.qd[d]) + "^{*}")
+        shown = [claim22(c, text(S.qd[d]) + "*", tex(S.qd[d]) + "^{*}")
                  for d in S.dependent_coordinates for c in nus]
         st.append(Step("2.3", r"the same for $\dot q^*$", shown, check_identity(
             "2.3", r"$\partial(d\dot q^*/dq_\varepsilon)/\partial q'_\nu = d/dq_\varepsilon"

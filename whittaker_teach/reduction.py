@@ -42,7 +42,7 @@ from .errors import ModelError, ModelTypeError, guarded
 from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
                       velocity_form, whittaker_forms)
 from .rewrite import collected, rational_parts
-from .steps import Derivation, Report, Step, eq, notation, partial
+from .steps import Derivation, Report, Step, eq, notation, partial, tex, text
 from .verify import (DPS, EXACT_SIZE_LIMIT, check_identity, check_zero, shared_points,
                      values_at, within_size)
 
@@ -511,9 +511,9 @@ class Reduction:
             return partial("L*", "L^{*}", z)
 
         def XD(z):
-            return partial(sp.pretty(v), sp.latex(v), z)
+            return partial(text(v), tex(v), z)
         st = []
-        xl = sp.latex(self.independent)
+        xl = tex(self.independent)
         st.append(Step("1.5", f"change of variable: ${xl}$ replaces $t$, $q' = dq/d{xl}$",
                        [eq(S.qd[c], v * qp[c]) for c in nus]))
         st.append(Step("1.6", r"$\Omega$: $\tilde L$ with (1.5) substituted",
@@ -610,7 +610,7 @@ class Reduction:
             return [Step("1.22", r"no constraints ($g = 0$): $\omega$, $\dot q^*$ and the "
                          "constraint term of (1.26) are absent", [])]
         qp, qs = self._qp, {c: S.q[c] for c in S.coordinates}
-        star = [notation(sp.pretty(S.qd[c]) + "*", sp.latex(S.qd[c]) + "^{*}") for c in deps]
+        star = [notation(text(S.qd[c]) + "*", tex(S.qd[c]) + "^{*}") for c in deps]
         om = [sp.Symbol("omega_" + _name(c)) for c in deps]
         st = [Step("1.22", r"$\omega$: the constraints with (1.5) substituted",
                    [eq(o, w) for o, w in zip(om, self._omega)]),
@@ -620,7 +620,7 @@ class Reduction:
                        [self._d(q, v) for q in self._qdstar],
                        smp)),
               Step("1.24", "(1.10) in the new variables", lambda: [
-                  eq(v * partial(sp.pretty(o), sp.latex(o), v) - o, 0) for o in om], check_zero(
+                  eq(v * partial(text(o), tex(o), v) - o, 0) for o in om], check_zero(
                   "1.24", r"$\dot q_\varepsilon\,\partial\omega/\partial\dot q_\varepsilon - \omega"
                   " = 0$",
                   [v * self._d(w, v) - w for w in self._omega], smp))]
@@ -632,7 +632,7 @@ class Reduction:
         def shown():
             out = []
             for c_dep, s_ in zip(deps, star):
-                qd_t, qd_l = sp.pretty(S.qd[c_dep]), sp.latex(S.qd[c_dep])
+                qd_t, qd_l = text(S.qd[c_dep]), tex(S.qd[c_dep])
                 out += [eq(partial(s_.name, sp.latex(s_), qp[c]), partial(qd_t, qd_l, S.qd[c]))
                         for c in nus]
                 out += [eq(partial(s_.name, sp.latex(s_), qs[c]), partial(qd_t, qd_l, qs[c]) / v)
@@ -648,8 +648,8 @@ class Reduction:
     def _momentum_step(self):
         """(1.26a): (dL/dqdot_dep)* written in q', q and h, as used in (1.26)."""
         S = self.system
-        names = [notation(f"(∂L/∂{sp.pretty(S.qd[c])})*",
-                          rf"\left(\frac{{\partial L}}{{\partial {sp.latex(S.qd[c])}}}\right)^{{*}}")
+        names = [notation(f"(∂L/∂{text(S.qd[c])})*",
+                          rf"\left(\frac{{\partial L}}{{\partial {tex(S.qd[c])}}}\right)^{{*}}")
                  for c in S.dependent_coordinates]
         forms = momentum_forms(self)
         return Step("1.26a", r"used in (1.26): $(\partial L/\partial\dot q_{\varepsilon+\beta})^*$,"
@@ -674,7 +674,7 @@ class Reduction:
         eom = dict(zip(S.independent_coordinates, S._eom()))
         forms = whittaker_forms(self)
         st = [Step("1.26", r"the generalized Whittaker equations, one per $q_\nu$, each "
-                   r"derivative carried out but $d/d" + sp.latex(self.independent) + "$",
+                   r"derivative carried out but $d/d" + tex(self.independent) + "$",
                    [eq(f, 0) for f in forms], check_reading(
                        "1.26", r"$\dot q_\varepsilon$ times (1.26) is the $\nu$-th equation of "
                        "(1.4) on the energy surface (1.12); the form shown is (1.26)",
@@ -743,7 +743,7 @@ class Reduction:
         """Every step of the paper for this system: a :class:`Derivation` of :class:`Step`."""
         if "steps" not in self._cache:
             title = (f"{self.system.name}: Whittaker reduction with $q_\\varepsilon = "
-                     f"{sp.latex(self.independent)}$, $\\operatorname{{sign}}\\dot q_\\varepsilon = "
+                     f"{tex(self.independent)}$, $\\operatorname{{sign}}\\dot q_\\varepsilon = "
                      f"{self.direction:+d}$")
             with shared_points():
                 self._cache["steps"] = Derivation(title, self._steps())
@@ -792,5 +792,5 @@ LSTAR = notation("L*", "L^{*}")
 
 def _dd(f, x):
     """The notation d f / d x (a total derivative along the path), for display."""
-    fx = sp.pretty(sp.Symbol(f), use_unicode=True)
-    return notation(f"d{fx}/d{x}", rf"\frac{{d {sp.latex(sp.Symbol(f))}}}{{d {sp.latex(x)}}}")
+    fx = text(sp.Symbol(f), use_unicode=True)
+    return notation(f"d{fx}/d{x}", rf"\frac{{d {tex(sp.Symbol(f))}}}{{d {tex(x)}}}")

@@ -234,15 +234,44 @@ def notation(text, tex):
     return Notation(text)
 
 
+_PRINTED = {}
+
+
+def tex(x):
+    """``sp.latex(x)`` of a symbol, remembered: a derivation names the same symbols in
+    many steps (the printer costs some 10 microseconds a call).
+
+    >>> print(tex(sp.Symbol("theta_1")))
+    \\theta_{1}
+    """
+    r = _PRINTED.get(("tex", x))
+    if r is None:
+        if len(_PRINTED) > 10_000:
+            _PRINTED.clear()
+        r = _PRINTED["tex", x] = sp.latex(x)
+    return r
+
+
+def text(x, use_unicode=None):
+    """``sp.pretty(x, use_unicode=...)`` of a symbol, remembered (by the Unicode setting
+    in force, where none is given)."""
+    from sympy.printing.pretty.pretty_symbology import pretty_use_unicode
+    flag = pretty_use_unicode() if use_unicode is None else use_unicode
+    r = _PRINTED.get(("text", x, flag))
+    if r is None:
+        r = _PRINTED["text", x, flag] = sp.pretty(x, use_unicode=flag)
+    return r
+
+
 def partial(f, f_tex, z, w=None):
     """The notation d f / d z (or d^2 f / dz dw, or d^2 f / dz^2 with w = z), to show a
     step in the paper's form for the coordinates at hand."""
-    zt, zl = sp.pretty(z, use_unicode=True), sp.latex(z)
+    zt, zl = text(z, use_unicode=True), tex(z)
     if w is None:
         return notation(f"∂{f}/∂{zt}", rf"\frac{{\partial {f_tex}}}{{\partial {zl}}}")
     if w == z:
         return notation(f"∂²{f}/∂{zt}²", rf"\frac{{\partial^2 {f_tex}}}{{\partial {zl}^2}}")
-    wt, wl = sp.pretty(w, use_unicode=True), sp.latex(w)
+    wt, wl = text(w, use_unicode=True), tex(w)
     return notation(f"∂²{f}/∂{zt}∂{wt}",
                     rf"\frac{{\partial^2 {f_tex}}}{{\partial {zl}\,\partial {wl}}}")
 
