@@ -169,7 +169,7 @@ class _NoKey(Exception):
 
 _ORDER_KEYS = {}
 _RANKS = {}
-_ORDER_KEYS_LIMIT = 200_000
+_ORDER_KEYS_LIMIT = 50_000
 
 
 def _order_key(e):
