@@ -351,7 +351,7 @@ class Reduction:
         memo = {}
         a_eps = substitute(acc[S.qdd[self._eps]], sub, memo)
         inv = power(vs, -2)
-        return [(substitute(acc[S.qdd[c]], sub, memo) - self._qp[c] * a_eps) * inv
+        return [mul(substitute(acc[S.qdd[c]], sub, memo) - mul(self._qp[c], a_eps), inv)
                 for c in self._nus]
 
     def _tidy_accelerations(self):
