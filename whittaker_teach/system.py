@@ -387,7 +387,9 @@ class ChaplyginSystem:
                 qd, q = self.qd[c], self.q[c]
                 e = self._dt(self._d(Lt, qd)) - self._d(Lt, q)
                 for Pb, phi in zip(P, self._phi.values()):
-                    e -= mul(Pb, self._dt(self._d(phi, qd)) - self._d(phi, q))
+                    term = self._dt(self._d(phi, qd)) - self._d(phi, q)
+                    if term != 0:       # Pb*0 would ask whether every factor of Pb is finite
+                        e -= mul(Pb, term)
                 eqs.append(e if self._large else collected(e, self._velocity_symbols()))
             self._cache["eom"] = eqs
         return self._cache["eom"]
