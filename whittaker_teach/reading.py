@@ -24,7 +24,7 @@ from __future__ import annotations
 import sympy as sp
 
 from .dag import bottom_up, expanded_terms, instances, power, substitute, tree_size
-from .rewrite import RATIONAL_OPS_LIMIT, _ops_above, collected, factored, pythagoras
+from .rewrite import RATIONAL_OPS_LIMIT, _ops_above, collected, expanded, factored, pythagoras
 from .verify import check_identity, expand_may_equal
 
 __all__ = ["TotalD", "TidyMemo", "powers_combined", "tidy", "evaluate", "carried_out", "check_reading",
@@ -291,14 +291,14 @@ def _factored(e):
     multivariate polynomial can take minutes, and the form is only for reading)."""
     if _ops_above(e, RATIONAL_OPS_LIMIT) or expanded_terms(e, FACTOR_TERMS_LIMIT) > FACTOR_TERMS_LIMIT:
         return e
-    return factored(sp.expand(e))
+    return factored(expanded(e))
 
 
 def velocity_form(red):
     """(1.12): qdot_eps = s sqrt(2 (h + A0) / (2 A2)), numerator and denominator tidied."""
     A2, _, A0 = red._A
     num = _factored(2 * (red.h + A0))
-    den = _tidy(red, sp.expand(2 * A2), _primes(red))
+    den = _tidy(red, expanded(2 * A2), _primes(red))
     return red.direction * power(num, sp.S.Half) / power(den, sp.S.Half)
 
 
@@ -307,7 +307,7 @@ def lstar_form(red):
     A2, A1, A0 = red._A
     qp = _primes(red)
     return (red.direction * sp.sqrt(_factored(2 * (red.h + A0)))
-            * sp.sqrt(_tidy(red, sp.expand(2 * A2), qp)) + _tidy(red, A1, qp))
+            * sp.sqrt(_tidy(red, expanded(2 * A2), qp)) + _tidy(red, A1, qp))
 
 
 def momentum_forms(red):

@@ -41,7 +41,7 @@ from .dag import (add, along, diff, mul, polynomial_in, power, renamed, substitu
 from .errors import ModelError, ModelTypeError, guarded
 from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
                       velocity_form, whittaker_forms)
-from .rewrite import collected, rational_parts
+from .rewrite import collected, expanded, rational_parts
 from .steps import Derivation, Report, Step, eq, notation, partial, tex, text
 from .verify import (DPS, EXACT_SIZE_LIMIT, check_identity, check_zero, shared_points,
                      values_at, within_size)
@@ -109,7 +109,7 @@ def _tidy_coefficient(e):
     potential (1 + x/3 + theta/5)**40 stays one term, as the user wrote it)."""
     if any(p.base.is_Add and p.exp.is_Integer and abs(p.exp) > 4 for p in e.atoms(sp.Pow)):
         return sp.expand(e, multinomial=False)
-    return sp.expand(e)
+    return expanded(e)
 
 
 #: above this many equations (1.26), q'' is read from the accelerations of (1.4)

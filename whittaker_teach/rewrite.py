@@ -86,6 +86,33 @@ def _negative(e):
 
 _FACTORED = {}
 _FACTORED_LIMIT = 20000
+_EXPANDED = {}
+
+
+def expanded(expr):
+    """``sympy.expand(expr)``, the same expression, by one walk into a polynomial ring
+    where that applies (:func:`.polywalk.groups` with no symbols to group by: the terms
+    of ``expand``), else by ``expand``; remembered (a derivation expands its kinetic and
+    potential coefficients for (1.12) and again to show them).
+
+    >>> a, b, t = sp.symbols("a b theta")
+    >>> e = a * (b + sp.tan(t))**2 / 2
+    >>> expanded(e) == sp.expand(e), expanded(e).args == sp.expand(e).args
+    (True, True)
+    """
+    r = _EXPANDED.get(expr)
+    if r is None:
+        try:
+            parts = polywalk.groups(expr, [])
+            r = parts.get(sp.S.One, sp.S.Zero) if set(parts) <= {sp.S.One} else None
+        except polywalk.NotPolynomial:
+            r = None
+        if r is None:
+            r = sp.expand(expr)
+        if len(_EXPANDED) >= _FACTORED_LIMIT:
+            _EXPANDED.clear()
+        _EXPANDED[expr] = r
+    return r
 
 
 def factored(expr):

@@ -330,3 +330,15 @@ def test_sums_of_positive_squares_are_irreducible_as_factor_list_says():
         if polywalk._positive_squares(p):
             c, factors = p.factor_list()
             assert len(factors) == 1 and factors[0][1] == 1, p
+
+
+@pytest.mark.parametrize("expr", [
+    (a + b * sp.tan(t))**2 * (c - a) + sp.cos(a - b) * a * c,
+    m * (2 * sp.sin(t)**2 / sp.cos(t)**2 + 2) / 2 + m * (a * b + 1)**2 / 2,   # the chain's 2 A2
+    -c * (b - a)**2 - 3 * (a - t)**2 + 2 * m,                                # 2 (h + A0)
+    sp.exp(a + b) * a, a / (a + b), sp.sqrt(a) * (a + b), 0.5 * a * (a + 1), sp.S.Zero,
+])
+def test_expanded_is_expand_argument_by_argument(expr):
+    """``rewrite.expanded`` (a ring walk where it applies, else ``expand``) is expand's
+    expression, to the order of the arguments."""
+    assert sp.srepr(rewrite.expanded(expr)) == sp.srepr(sp.expand(expr))
