@@ -293,7 +293,7 @@ class ChaplyginSystem:
                              "coordinate or velocity; rename it (the derivation uses plain "
                              "symbols for q and qdot)")
         _check_values(expr, what)
-        e = expr.xreplace(self._to_internal)
+        e = substitute(expr, self._to_internal)        # xreplace, each shared node once
         nodes = _nodes(e)                  # one walk for the tests below, not one each
         for d in sorted((n for n in nodes if isinstance(n, sp.Derivative)), key=sp.default_sort_key):
             raise ModelError(f"{what} contains {d.xreplace(self._to_public)}, which is not "
