@@ -229,7 +229,7 @@ def _resorted(e, args):
     if (t is sp.Add or t is sp.Mul) and e.is_commutative:
         rest = [a for a in args if not a.is_Number]
         _sort_args(rest)
-        return t._from_args([a for a in args if a.is_Number] + rest)
+        return t._from_args([a for a in args if a.is_Number] + rest, True)
     if t is sp.Pow:
         return power(*args)
     return e.func(*args)
