@@ -23,7 +23,8 @@ from __future__ import annotations
 
 import sympy as sp
 
-from .dag import bottom_up, expanded_terms, instances, power, substitute, tree_size
+from .canonical import power
+from .dag import bottom_up, expanded_terms, instances, substitute, tree_size
 from .rewrite import RATIONAL_OPS_LIMIT, _ops_above, collected, expanded, factored, pythagoras
 from .verify import check_identity, expand_may_equal
 

@@ -36,8 +36,8 @@ import mpmath
 import sympy as sp
 
 from .coordinates import name as _name, sign_assumptions as _assume
-from .dag import (add, along, diff, mul, polynomial_in, power, renamed, substitute,
-                  tree_size, zeroed)
+from .canonical import add, mul, power
+from .dag import along, diff, polynomial_in, renamed, substitute, tree_size, zeroed
 from .errors import ModelError, ModelTypeError, guarded
 from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
                       velocity_form, whittaker_forms)

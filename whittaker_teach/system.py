@@ -45,7 +45,8 @@ import sympy as sp
 from sympy.core.function import AppliedUndef
 
 from .coordinates import T, name, sign_assumptions
-from .dag import add, diff, instances, max_depth, mul, power, substitute, zeroed
+from .canonical import add, mul, power
+from .dag import diff, instances, max_depth, substitute, zeroed
 from .errors import ModelError, ModelTypeError, guarded
 from .linear import lu_solve
 from .reduction import Reduction

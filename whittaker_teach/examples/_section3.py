@@ -6,7 +6,8 @@ Kept apart from ``sledge.py`` so that building the sledge does not load it.
 import mpmath
 import sympy as sp
 
-from ..dag import diff, power      # SymPy's own rules, each shared piece once
+from ..canonical import power
+from ..dag import diff             # SymPy's own rules, each shared piece once
 from ..reading import TotalD, cleared_forms
 from ..steps import Step, eq, notation
 from ..verify import DPS, Check, check_identity, check_zero, largest_value
