@@ -166,12 +166,30 @@ def _merges(o):
     factor of the same base (a term of the same non-numeric part): a number, an
     infinity or a power of a number (3**x * 2**x, sqrt(2) * sqrt(3)), I, an exponential
     (exp(x) * exp(y)), an order term, a bounds object, anything non-commutative."""
+    if o.is_Pow:
+        return o.base.is_Number or o.base is sp.S.Exp1 or not o.is_commutative
     return (o.is_Number or o is sp.S.ImaginaryUnit or o is sp.S.ComplexInfinity
-            or o.is_Order or not o.is_commutative or (o.is_Pow and o.base.is_Number)
-            or isinstance(o, _COMBINING) or not isinstance(o, sp.Expr))
+            or o.is_Order or not o.is_commutative or isinstance(o, _COMBINING)
+            or not isinstance(o, sp.Expr))
 
 
-_COMBINING = (sp.exp, sp.AccumBounds)
+def _combining():
+    from sympy.functions.elementary.exponential import ExpBase
+    return ExpBase, sp.AccumBounds   # ExpBase, not exp: exp's metaclass checks in Python
+
+
+_COMBINING = _combining()
+
+
+def _built(t, args):
+    """``t._from_args(args)`` for a commutative sum or product, with SymPy's constructor
+    postprocessors where one is registered for the class of an argument (matrix
+    expressions register them; they are never among the plain factors)."""
+    obj = t._from_args(args, True)
+    keys = tuple(sp.Basic._constructor_postprocessor_mapping)
+    if keys and any(isinstance(a, keys) for a in args):
+        return t._exec_constructor_postprocessors(obj)
+    return obj
 
 
 def _plain_product(factors):
@@ -212,7 +230,7 @@ def _plain_product(factors):
         out.insert(0, coeff)
     if len(out) < 2:
         return out[0] if out else sp.S.One
-    return sp.Mul._exec_constructor_postprocessors(sp.Mul._from_args(out, True))
+    return _built(sp.Mul, out)
 
 
 def _merged_power(b, xs):
@@ -262,4 +280,4 @@ def _plain_sum(terms):
     if len(out) < 2:
         return out[0] if out else sp.S.Zero
     _sort_args(out)
-    return sp.Add._exec_constructor_postprocessors(sp.Add._from_args(out, True))
+    return _built(sp.Add, out)
