@@ -54,7 +54,8 @@ def _power_of_product(base, k):
     builds it: each factor to the power k (a power's exponent multiplied by k, which
     is exact for an integer k), then their product; each power by :func:`power` (a
     power of a sum without its queries) and the product by :func:`_plain_product`.
-    None where ``flatten`` would do more than multiply numbers and sort.
+    None where ``flatten`` would do more than multiply numbers, merge the powers of a
+    base and sort.
 
     >>> x, y = sp.symbols("x y")
     >>> e = 3 * x * sp.sqrt(x**2 + y) / 2
