@@ -606,6 +606,12 @@ def _vector_compute(e, memo, prec, width):
     return _Marked([_NOT_RAW] * width)
 
 
+def _raw_values(point):
+    """{symbol: raw mpf value (a tuple)} of a point; ``_NOT_RAW`` for a value that is
+    not an mpf (an mpc, say), which :func:`evaluate` then takes."""
+    return {s: v._mpf_ if isinstance(v, mpmath.mpf) else _NOT_RAW for s, v in point.items()}
+
+
 def _block_of(raws):
     """The block memo of the points whose raw values are ``raws`` ({symbol: raw value or
     ``_NOT_RAW``} each); None when they do not all give the same symbols."""
@@ -659,8 +665,7 @@ class _Points:
                 pt = {s: mpmath.mpf(v) if isinstance(v, (int, float)) else v
                       for s, v in pt.items()}
                 self.points.append(pt)
-                self.raws.append({s: v._mpf_ if isinstance(v, mpmath.mpf) else _NOT_RAW
-                                  for s, v in pt.items()})
+                self.raws.append(_raw_values(pt))
         return self.points[i]
 
     def raw(self, i):
@@ -730,8 +735,7 @@ class _Derived:
                     except _EVAL_ERRORS:
                         pt[s_] = mpmath.nan        # the substitution fails here: unusable
             self.points.append(pt)
-            self.raws.append({s_: v._mpf_ if isinstance(v, mpmath.mpf) else _NOT_RAW
-                              for s_, v in pt.items()})
+            self.raws.append(_raw_values(pt))
         return self.points[i]
 
     def raw(self, i):
@@ -887,8 +891,7 @@ class At:
         with mpmath.workdps(DPS):
             self.memo = {s: mpmath.mpf(v) if isinstance(v, (int, float)) else v
                          for s, v in point.items()}
-        self.raw = {s: v._mpf_ if isinstance(v, mpmath.mpf) else _NOT_RAW
-                    for s, v in self.memo.items()}
+        self.raw = _raw_values(self.memo)
 
     def __call__(self, expr):
         with mpmath.workdps(DPS):
@@ -907,8 +910,7 @@ def values_at(expr, points):
     with mpmath.workdps(DPS):
         pts = [{s: mpmath.mpf(v) if isinstance(v, (int, float)) else v for s, v in p.items()}
                for p in points]
-        block = _block_of([{s: v._mpf_ if isinstance(v, mpmath.mpf) else _NOT_RAW
-                            for s, v in p.items()} for p in pts])
+        block = _block_of([_raw_values(p) for p in pts])
         if block is None:
             raise ValueError("values_at: the points do not all give the same symbols")
         vec = _vector(expr, block, mpmath.mp.prec)
