@@ -51,7 +51,7 @@ def nielsen_steps(red):
     xl = tex(x)
     dform = total_derivative_form(red)
     st = [Step("2.1", r"the total derivative of $L^*$ ($q''$ appears explicitly)",
-               [eq(notation(f"dL*/d{x}", rf"\frac{{d L^{{*}}}}{{d {xl}}}"), dform)],
+               lambda: [eq(notation(f"dL*/d{x}", rf"\frac{{d L^{{*}}}}{{d {xl}}}"), dform)],
                check_reading("2.1", rf"the form shown is $dL^*/d{xl}$ along a path", [dform],
                              [dL], red))]
 
@@ -65,7 +65,7 @@ def nielsen_steps(red):
                + partial(f, ft, q[z]))
         return eq(lhs, rhs)
     st.append(Step("2.2", r"$\partial/\partial q'_\nu$ of (2.1)",
-                   [claim22(c, "L*", "L^{*}") for c in nus], check_identity(
+                   lambda: [claim22(c, "L*", "L^{*}") for c in nus], check_identity(
         "2.2", r"$\partial(dL^*/dq_\varepsilon)/\partial q'_\nu = d/dq_\varepsilon(\partial L^*/"
         r"\partial q'_\nu) + \partial L^*/\partial q_\nu$",
         [red._d(dL, qp[c]) for c in nus],
@@ -73,8 +73,9 @@ def nielsen_steps(red):
     if S.dependent_coordinates:
         lhs = [red._d(red._D(qs), qp[c]) for qs in red._qdstar for c in nus]
         rhs = [red._D(red._d(qs, qp[c])) + red._d(qs, q[c]) for qs in red._qdstar for c in nus]
-        shown = [claim22(c, text(S.qd[d]) + "*", tex(S.qd[d]) + "^{*}")
-                 for d in S.dependent_coordinates for c in nus]
+        def shown():
+            return [claim22(c, text(S.qd[d]) + "*", tex(S.qd[d]) + "^{*}")
+                    for d in S.dependent_coordinates for c in nus]
         st.append(Step("2.3", r"the same for $\dot q^*$", shown, check_identity(
             "2.3", r"$\partial(d\dot q^*/dq_\varepsilon)/\partial q'_\nu = d/dq_\varepsilon"
             r"(\partial\dot q^*/\partial q'_\nu) + \partial\dot q^*/\partial q_\nu$",
@@ -83,8 +84,8 @@ def nielsen_steps(red):
         st.append(Step("2.3", r"no constraints ($g = 0$): nothing to transform", []))
     forms = nielsen_forms(red)
     st.append(Step("2.4", r"the equations in Nielsen form, one per $q_\nu$",
-                   [eq(f, 0) for f in forms], check_reading(
+                   lambda: [eq(f, 0) for f in forms], check_reading(
                        "2.4", "(2.4) minus (1.26) vanishes: the Nielsen form is equivalent; the "
-                       "form shown is (2.4)", list(n["2.4"]) + forms,
-                       list(red._eqs) + list(n["2.4"]), red)))
+                       "form shown is (2.4)", forms, list(n["2.4"]), red,
+                       also=(list(n["2.4"]), list(red._eqs)))))
     return st

@@ -258,16 +258,18 @@ def carried_out(shown, red, pieces=None):
     return out
 
 
-def check_reading(label, claim, shown, library, red, sample=None, at=None):
+def check_reading(label, claim, shown, library, red, sample=None, at=None, also=((), ())):
     """Check that the reading forms ``shown`` (a list) equal the library's ``library``:
     exactly by ``expand`` when cheap, else at random admissible points (40 digits).  Each
     piece under a d/dq_eps is compared with the piece the library built, and the form
     with the library's pieces differentiated is compared with ``library``.  ``at``: as
-    for :func:`.verify.check_identity` (symbols replaced at evaluation)."""
+    for :func:`.verify.check_identity` (symbols replaced at evaluation).  ``also``, two
+    lists (lhs, rhs) of the library's own expressions, checked first in the same check:
+    they hold no d/dq_eps, so they are not searched for one (a walk of every node)."""
     pieces = []
     definitions = carried_out(shown, red, pieces)
-    lhs = list(shown) + [a for a, _ in pieces]
-    rhs = list(library) + [b for _, b in pieces]
+    lhs = list(also[0]) + list(shown) + [a for a, _ in pieces]
+    rhs = list(also[1]) + list(library) + [b for _, b in pieces]
     return check_identity(label, claim, lhs, rhs, sample or red._sample,
                           definitions=definitions, at=at)
 

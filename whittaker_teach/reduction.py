@@ -515,7 +515,7 @@ class Reduction:
         st = []
         xl = tex(self.independent)
         st.append(Step("1.5", f"change of variable: ${xl}$ replaces $t$, $q' = dq/d{xl}$",
-                       [eq(S.qd[c], v * qp[c]) for c in nus]))
+                       lambda: [eq(S.qd[c], v * qp[c]) for c in nus]))
         st.append(Step("1.6", r"$\Omega$: $\tilde L$ with (1.5) substituted",
                        lambda: [eq(sp.Symbol("Omega"), collected(Om, [v]))]))
         tidy = lambda e: collected(e, [v] + list(qp.values()))  # noqa: E731
@@ -548,7 +548,7 @@ class Reduction:
                        rf"$\operatorname{{sign}}\dot q_\varepsilon = {self.direction:+d}$",
                        [eq(S.qd[eps], vform)], check_reading(
             "1.12", "the chosen root solves (1.13) and has the sign of the motion; the form "
-            "shown is that root", [vs, E13, vform], [self._drawn, h, vs], self)))
+            "shown is that root", [vform], [vs], self, also=([vs, E13], [self._drawn, h]))))
         Ovv = self._d(Omv, v)
         for lab, vars_, what in (("1.14", [qp[c] for c in nus], r"q'_\nu"),
                                  ("1.15", [qs[c] for c in sig], r"q_\sigma")):
@@ -568,8 +568,8 @@ class Reduction:
         st.append(Step("1.16", r"the reduced Lagrangian $L^* = \partial\Omega/\partial\dot "
                        r"q_\varepsilon$ at (1.12)", [eq(LSTAR, lform)], check_reading(
             "1.16", r"$L^*$ equals $\partial\Omega/\partial\dot q_\varepsilon$ with "
-            r"$\dot q_\varepsilon$ from (1.12); the form shown is $L^*$", [Ls, lform],
-            [Omv, Ls], self)))
+            r"$\dot q_\varepsilon$ from (1.12); the form shown is $L^*$", [lform], [Ls], self,
+            also=([Ls], [Omv]))))
         for lab, vars_, what in (("1.17", [qp[c] for c in nus], r"q'_\nu"),
                                  ("1.18", [qs[c] for c in sig], r"q_\sigma")):
             st.append(Step(lab, rf"$\partial L^*/\partial {what}$ by the chain rule",
@@ -581,12 +581,14 @@ class Reduction:
                 [self._chain(Ovv, vs, z) + self._d(Omv, z) for z in vars_],
                 [self._d(Ls, z) for z in vars_])))
         st.append(Step("1.19", "from (1.14) and (1.17)",
-                       [eq(d("L^*", qp[c]), self._d(Ls, qp[c])) for c in nus], self._check_at_112(
+                       lambda: [eq(d("L^*", qp[c]), self._d(Ls, qp[c])) for c in nus],
+                       self._check_at_112(
             "1.19", r"$\partial L^*/\partial q'_\nu = (1/\dot q_\varepsilon)\,\partial\Omega/"
             r"\partial q'_\nu$", [self._d(Om, qp[c]) / v for c in nus],
             [self._d(Ls, qp[c]) for c in nus])))
         st.append(Step("1.20", "from (1.15) and (1.18)",
-                       [eq(d("L^*", qs[c]), self._d(Ls, qs[c])) for c in sig], self._check_at_112(
+                       lambda: [eq(d("L^*", qs[c]), self._d(Ls, qs[c])) for c in sig],
+                       self._check_at_112(
             "1.20", r"$\partial L^*/\partial q_\sigma = (1/\dot q_\varepsilon)\,\partial\Omega/"
             r"\partial q_\sigma$ (the OCR prints $1/\dot q_\sigma$)",
             [self._d(Om, qs[c]) / v for c in sig], [self._d(Ls, qs[c]) for c in sig])))
@@ -610,12 +612,13 @@ class Reduction:
             return [Step("1.22", r"no constraints ($g = 0$): $\omega$, $\dot q^*$ and the "
                          "constraint term of (1.26) are absent", [])]
         qp, qs = self._qp, {c: S.q[c] for c in S.coordinates}
-        star = [notation(text(S.qd[c]) + "*", tex(S.qd[c]) + "^{*}") for c in deps]
+        def stars():            # the names, printed only when a step is shown
+            return [notation(text(S.qd[c]) + "*", tex(S.qd[c]) + "^{*}") for c in deps]
         om = [sp.Symbol("omega_" + _name(c)) for c in deps]
         st = [Step("1.22", r"$\omega$: the constraints with (1.5) substituted",
-                   [eq(o, w) for o, w in zip(om, self._omega)]),
+                   lambda: [eq(o, w) for o, w in zip(om, self._omega)]),
               Step("1.23", r"$\dot q^* = \partial\omega/\partial\dot q_\varepsilon$",
-                   [eq(s_, q) for s_, q in zip(star, self._qdstar)], check_zero(
+                   lambda: [eq(s_, q) for s_, q in zip(stars(), self._qdstar)], check_zero(
                        "1.23", r"$\dot q^*$ is free of $\dot q_\varepsilon$",
                        [self._d(q, v) for q in self._qdstar],
                        smp)),
@@ -631,7 +634,7 @@ class Reduction:
         rhs += [self._sub15(self._d(p, qs[c])) / v for p in phis for c in sig]
         def shown():
             out = []
-            for c_dep, s_ in zip(deps, star):
+            for c_dep, s_ in zip(deps, stars()):
                 qd_t, qd_l = text(S.qd[c_dep]), tex(S.qd[c_dep])
                 out += [eq(partial(s_.name, sp.latex(s_), qp[c]), partial(qd_t, qd_l, S.qd[c]))
                         for c in nus]
@@ -648,13 +651,14 @@ class Reduction:
     def _momentum_step(self):
         """(1.26a): (dL/dqdot_dep)* written in q', q and h, as used in (1.26)."""
         S = self.system
-        names = [notation(f"(∂L/∂{text(S.qd[c])})*",
-                          rf"\left(\frac{{\partial L}}{{\partial {tex(S.qd[c])}}}\right)^{{*}}")
-                 for c in S.dependent_coordinates]
+        def names():            # printed only when the step is shown
+            return [notation(f"(∂L/∂{text(S.qd[c])})*",
+                             rf"\left(\frac{{\partial L}}{{\partial {tex(S.qd[c])}}}\right)^{{*}}")
+                    for c in S.dependent_coordinates]
         forms = momentum_forms(self)
         return Step("1.26a", r"used in (1.26): $(\partial L/\partial\dot q_{\varepsilon+\beta})^*$,"
                     r" $\partial L/\partial\dot q_{\varepsilon+\beta}$ in $q'$, $q$ and $h$",
-                    [eq(a, b) for a, b in zip(names, forms)], check_reading(
+                    lambda: [eq(a, b) for a, b in zip(names(), forms)], check_reading(
                         "1.26a", r"the form shown is $\partial L/\partial\dot "
                         r"q_{\varepsilon+\beta}$, differentiated first, then with the "
                         "constraints (1.3), (1.5) and (1.12) substituted", forms, self._Pstar,
@@ -678,8 +682,8 @@ class Reduction:
                    [eq(f, 0) for f in forms], check_reading(
                        "1.26", r"$\dot q_\varepsilon$ times (1.26) is the $\nu$-th equation of "
                        "(1.4) on the energy surface (1.12); the form shown is (1.26)",
-                       [vs * e for e in self._eqs] + forms,
-                       [eom[c] for c in nus] + self._eqs, self, at=sub))]
+                       forms, self._eqs, self, at=sub,
+                       also=([vs * e for e in self._eqs], [eom[c] for c in nus])))]
         if S.dependent_coordinates:
             st.append(self._momentum_step())
         self._accelerations()       # (1.26) must be solvable for q''
@@ -698,9 +702,10 @@ class Reduction:
         if S.is_holonomic:
             st.append(self._step_127())
         x = self.independent
-        rates = [eq(_dd("t", x), 1 / vs)]
-        rates += [eq(_dd(_name(c), x), q)
-                  for c, q in zip(S.dependent_coordinates, self._qdstar)]
+
+        def rates():
+            return [eq(_dd("t", x), 1 / vs)] + [
+                eq(_dd(_name(c), x), q) for c, q in zip(S.dependent_coordinates, self._qdstar)]
         chk = None
         if S.dependent_coordinates:
             chk = check_identity("from 1.12", r"$dq_{\varepsilon+\beta}/dq_\varepsilon = "

@@ -615,12 +615,12 @@ class ChaplyginSystem:
         else:
             steps.append(Step("1.1", "the dependent velocities, solved for (Chetaev-type ideal "
                               "constraints)",
-                              [eq(self.qd[c], phi) for c, phi in
-                               zip(self.dependent_coordinates, self._phi.values())], floats,
+                              lambda: [eq(self.qd[c], phi) for c, phi in
+                                       zip(self.dependent_coordinates, self._phi.values())], floats,
                               note=note or ""))
         steps.append(Step("1.2", r"the Lagrangian with the constraints substituted, "
                           r"$\tilde L$ of (1.2)",
-                          [eq(sp.Symbol("Ltilde"), self._Ltilde)], dep_q and check_zero(
+                          lambda: [eq(sp.Symbol("Ltilde"), self._Ltilde)], dep_q and check_zero(
             "1.2", r"the terms of (1.2) in $\partial\varphi/\partial q_{\varepsilon+\beta}$ and "
             r"$\partial\tilde L/\partial q_{\varepsilon+\beta}$ vanish (Chaplygin type)",
             [self._d(phi, s) for phi in self._phi.values() for s in dep_q]
@@ -630,9 +630,9 @@ class ChaplyginSystem:
             free = ", ".join(f"${sp.latex(self.q[c])}$" for c in self.independent_coordinates)
             steps.append(Step("1.3", f"Chaplygin type: each constraint depends on {free} and "
                               "their velocities only (checked when the model was built)",
-                              [eq(self.qd[c], sp.Function("phi_" + _name(c))(
+                              lambda: [eq(self.qd[c], sp.Function("phi_" + _name(c))(
                                   *[self.q[i] for i in self._sig], *[self.qd[i] for i in self._sig]))
-                               for c in self.dependent_coordinates]))
+                                  for c in self.dependent_coordinates]))
         at = {}
         chk = check_zero("1.4", "the solved accelerations satisfy (1.4)",
                          [substitute(e, self._accelerations(), at) for e in self._eom()],
