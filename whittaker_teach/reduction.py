@@ -127,10 +127,12 @@ class _Sampler:
     ``*``, without the substituted expression being built; the check of (1.12) compares
     the root with the drawn value (``Reduction._drawn``).  With ``energy=False`` the
     drawn motion is returned as it is (h not set).  ``batch`` draws a block of points
-    and evaluates their energies and roots together."""
+    and evaluates their energies and roots together; ``kept`` is then what the roots'
+    evaluation computed, the values of every node of (1.12) at those points, which the
+    checks' block of the same points takes over (:func:`.verify.values_at`)."""
 
     def __init__(self, red):
-        self.red = red
+        self.red, self.kept = red, None
 
     def __call__(self, rng, energy=True):
         pt = self.red._motion(rng)
@@ -140,7 +142,8 @@ class _Sampler:
 
     def batch(self, rng, n):
         pts = [self.red._motion(rng) for _ in range(n)]
-        self.red._on_surface(pts)
+        self.kept = {}
+        self.red._on_surface(pts, self.kept)
         return pts
 
 
@@ -460,15 +463,18 @@ class Reduction:
                 pt[S.qd[c]] = mpmath.mpf(v) * mpmath.mpf(pt[self._qp[c]])
         return pt
 
-    def _on_surface(self, pts):
+    def _on_surface(self, pts, kept=None):
         """Put the drawn motions on the energy surface, as :class:`_Sampler` says, all
         evaluated together (``verify.values_at``); a point where the energy or the root
-        cannot be evaluated (or is not real) is unusable (nan)."""
+        cannot be evaluated (or is not real) is unusable (nan).  ``kept``: a dict that
+        receives the values of the root's nodes, computed from its own symbols only."""
         S = self.system
         for pt, h in zip(pts, values_at(S._energy(), pts)):
             pt[self.h], pt[self._drawn] = h, pt[self._v]
+        own = self._vstar.free_symbols
         with mpmath.workdps(DPS):
-            for pt, v in zip(pts, values_at(self._vstar, pts)):
+            roots = values_at(self._vstar, [{s: pt[s] for s in own} for pt in pts], kept)
+            for pt, v in zip(pts, roots):
                 if not isinstance(v, mpmath.mpf):
                     v = mpmath.nan
                 pt[self._v] = pt[S.qd[self._eps]] = v

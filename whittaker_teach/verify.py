@@ -690,7 +690,21 @@ class _Points:
         if not hasattr(self, "_block"):
             self[POINTS - 1]
             self._block = _block_of(self.raws[:POINTS])
+            kept = getattr(self.sample, "kept", None)
+            if kept and self._block is not None:
+                _take_over(self._block, kept)
         return self._block
+
+
+def _take_over(block, kept):
+    """Add to ``block`` the node values of ``kept`` (another block), when each symbol of
+    ``kept`` has the same values, bit for bit, in both: every node of ``kept`` was
+    computed from those symbols' values alone, so it has the same values here."""
+    if kept.get(_WIDTH) != block[_WIDTH] or _BASE in kept:
+        return
+    if all(block.get(s) == v for s, v in kept.items() if isinstance(s, sp.Symbol)):
+        for e, v in kept.items():
+            block.setdefault(e, v)
 
 
 class _Derived:
@@ -898,10 +912,12 @@ class At:
             return _value(expr, self.memo, self.raw, mpmath.mp.prec)
 
 
-def values_at(expr, points):
+def values_at(expr, points, kept=None):
     """The values of ``expr`` at several points {symbol: number} with the same symbols,
     evaluated together as the checks' blocks are (:func:`_vector`); nan at a point where
-    it cannot be evaluated (a pole, a domain error).
+    it cannot be evaluated (a pole, a domain error).  ``kept``, a dict, receives the block
+    (the values of every node and symbol): a sampler that offers it as ``kept`` has
+    them taken over by the checks' block of the same points (:meth:`_Points.block`).
 
     >>> x = sp.Symbol("x")
     >>> [float(v) for v in values_at(sp.sqrt(x) + 1, [{x: 4}, {x: 9}, {x: 0}])]
@@ -914,6 +930,8 @@ def values_at(expr, points):
         if block is None:
             raise ValueError("values_at: the points do not all give the same symbols")
         vec = _vector(expr, block, mpmath.mp.prec)
+        if kept is not None:
+            kept.update(block)
         out = []
         for i in range(len(pts)):
             try:

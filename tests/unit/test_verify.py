@@ -197,3 +197,36 @@ def test_raw_residual_is_the_mpf_objects_residual():
         inf = mpmath.mpf("inf")._mpf_
         assert V._raw_residual([([inf], [inf])], 0, prec) is None
         assert V._raw_residual([([V._NOT_RAW], [inf])], 0, prec) is None
+
+
+def test_a_block_takes_over_a_samplers_values_only_where_its_symbols_agree():
+    """A sampler that offers ``kept`` (the block its own evaluation made, as the energy
+    surface's sampler does with the root (1.12)) has those node values taken over by the
+    checks' block of the same points, and only when every symbol of ``kept`` has the
+    same bits there; the values taken over are the ones the block would compute."""
+    import mpmath
+    from whittaker_teach import verify
+    y = sp.Symbol("y")
+    root = sp.sqrt(x**2 + 1) / (x + 3)
+
+    class Sampler:
+        def __init__(self, shift=0.0):
+            self.kept, self.shift = None, shift
+
+        def __call__(self, rng):
+            return {x: rng.uniform(0.1, 2.0), y: rng.uniform(0.5, 1.5)}
+
+        def batch(self, rng, n):
+            pts = [self(rng) for _ in range(n)]
+            self.kept = {}
+            verify.values_at(root, [{x: p[x] + self.shift} for p in pts], self.kept)
+            return pts
+
+    with mpmath.workdps(verify.DPS):
+        prec = mpmath.mp.prec
+        good, bad = verify._Points(Sampler(), 0).block(), verify._Points(Sampler(1e-9), 0).block()
+        fresh = verify._Points(lambda rng: Sampler()(rng), 0).block()   # the same points
+        assert root in good and root not in bad            # x's values differ in ``bad``
+        assert good[root] == verify._vector(root, fresh, prec)
+        assert good[y] == fresh[y]                          # symbols are the block's own
+    assert check_identity("k", "", root * y, y * root, Sampler(), exact=False).holds
