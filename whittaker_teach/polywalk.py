@@ -326,8 +326,10 @@ def _gen_key(g):
 
 #: rings have a multiple of this many generators (the walk's own, then placeholders that
 #: stay at exponent 0): a derivation then builds a few rings instead of one per count of
-#: generators (each new ring costs SymPy about a millisecond of ``exec``)
-RING_STEP = 4
+#: generators (each new ring costs SymPy 0.4 to 1.1 ms of ``exec``).  With 8 the chain
+#: at n = 8 builds rings of 8 and 16 instead of 4, 8, 12 and 16: about 1.5 ms less,
+#: while the operations in the larger rings cost no measurable time more
+RING_STEP = 8
 
 
 def _walker(gens, roots):
