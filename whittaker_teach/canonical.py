@@ -18,7 +18,7 @@ True
 
 import sympy as sp
 
-__all__ = ["power", "mul", "add"]
+__all__ = ["power", "mul", "add", "sub", "negated"]
 
 
 def power(base, exp):
@@ -150,16 +150,64 @@ def add(*terms):
     return sp.Add(*terms) if r is None else r
 
 
+def negated(x):
+    """``-x`` as SymPy builds it: a sum is ``Mul(-1, x)``, which distributes (here by
+    :func:`mul`); anything else has SymPy's own ``__neg__``, which does not flatten.
+
+    >>> x, y = sp.symbols("x y")
+    >>> negated(2*x - y/3) == -(2*x - y/3)
+    True
+    """
+    from sympy.core.parameters import global_parameters
+    x = sp.sympify(x)
+    if type(x) is sp.Add and global_parameters.distribute:
+        return mul(sp.S.NegativeOne, x)
+    return -x
+
+
+def sub(a, b):
+    """``a - b`` as SymPy builds it, ``Add(a, -b)``, by :func:`add` and :func:`negated`.
+
+    >>> x, y = sp.symbols("x y")
+    >>> sub(x + 2*y, 2*(x + y)) == (x + 2*y) - 2*(x + y)
+    True
+    """
+    return add(a, negated(b))
+
+
 def _plain(t, args):
     """``t(*args)`` for ``t`` Add or Mul, without ``flatten`` where nothing combines
     (:func:`_plain_sum`, :func:`_plain_product`; a product's factors that are products
-    taken one by one, as ``flatten`` takes them); None otherwise."""
+    taken one by one, as ``flatten`` takes them; a rational times a sum distributed,
+    :func:`_distributed`); None otherwise."""
     if t is sp.Add:
         return _plain_sum(args)
     kept = [a for a in args if a is not sp.S.One]         # the identity, dropped first
     if len(kept) == 2 and (kept[0].is_Rational or kept[1].is_Rational):
-        return None                                        # flatten's rules for two
+        return _distributed(*kept)                          # flatten's rules for two
     return _plain_product([f for a in kept for f in (a.args if type(a) is sp.Mul else (a,))])
+
+
+def _distributed(a, b):
+    """``Mul(a, b)`` for a rational ``a`` (or ``b``) and a commutative sum, as
+    ``Mul.flatten``'s rule for two factors builds it: the sum of the terms each times
+    the rational (``_keep_coeff``), a sum built by :func:`_plain_sum` where it can;
+    None for anything else (SymPy's rules then apply).
+
+    >>> x, y = sp.symbols("x y")
+    >>> _distributed(sp.Integer(-2), 3*x + y/2) == sp.Mul(-2, 3*x + y/2)
+    True
+    """
+    from sympy.core.mul import _keep_coeff
+    from sympy.core.parameters import global_parameters
+    if b.is_Rational:
+        a, b = b, a
+    if (not a.is_Rational or a.is_zero or type(b) is not sp.Add or not b.is_commutative
+            or not global_parameters.distribute):
+        return None
+    terms = [_keep_coeff(a, t) for t in b.args]
+    r = _plain_sum(terms)
+    return sp.Add(*terms) if r is None else r
 
 
 def _merges(o):
@@ -251,34 +299,62 @@ def _merged_power(b, xs):
 
 
 def _plain_sum(terms):
-    """``Add(*terms)`` where ``flatten`` would only sort the terms: each term (those of a
-    sum among them taken one by one) is plain (:func:`_merges`: no number, no float
-    coefficient) and has its own part apart from a rational coefficient, so that no
-    two combine; None otherwise (SymPy's ``Add`` then builds it).
+    """``Add(*terms)`` where ``flatten`` would only add rational numbers and coefficients
+    and sort the terms: each term (those of a sum among them taken one by one) is a
+    rational number or plain (:func:`_merges`: no float coefficient), a rational times
+    its own part;
+    terms with the same part are merged as ``flatten`` merges them (the coefficients
+    added, a zero dropped, the term rebuilt as ``flatten`` rebuilds it); None otherwise
+    (SymPy's ``Add`` then builds it).
 
     >>> x, y = sp.symbols("x y")
     >>> _plain_sum([x*y, -2*sp.sin(x), x + y**2]) == sp.Add(x*y, -2*sp.sin(x), x + y**2)
     True
+    >>> _plain_sum([x*y + 3*sp.sin(x), -x*y, sp.sin(x)/2]) == 7*sp.sin(x)/2
+    True
     """
-    out, seen = [], set()
+    out, coeffs, merged, number = [], {}, False, sp.S.Zero
     for t in terms:
         for o in (t.args if type(t) is sp.Add else (t,)):
-            if o is sp.S.Zero:
-                continue                     # dropped before flatten, as the identity
+            if o.is_Rational:
+                number += o                  # flatten's number, first in the sum
+                continue
+            c = sp.S.One
             if type(o) is sp.Mul:
                 c = o.args[0]
                 if not o.is_commutative or (c.is_Number and not c.is_Rational):
                     return None
-                rest = o._new_rawargs(*o.args[1:]) if c.is_Rational else o
+                if c.is_Rational:
+                    rest = o._new_rawargs(*o.args[1:])
+                else:
+                    c, rest = sp.S.One, o
             elif _merges(o):
                 return None
             else:
                 rest = o
-            if rest in seen:
-                return None
-            seen.add(rest)
-            out.append(o)
+            if rest in coeffs:
+                coeffs[rest] += c
+                merged = True
+            else:
+                coeffs[rest] = c
+                out.append(o)
+    if merged:
+        out = [_term(c, rest) for rest, c in coeffs.items() if c is not sp.S.Zero]
+    if len(out) > 1:
+        _sort_args(out)
+    if number is not sp.S.Zero:
+        out.insert(0, number)
     if len(out) < 2:
         return out[0] if out else sp.S.Zero
-    _sort_args(out)
     return _built(sp.Add, out)
+
+
+def _term(c, rest):
+    """The term c*rest of a sum, as ``Add.flatten`` rebuilds a merged term."""
+    if c is sp.S.One:
+        return rest
+    if rest.is_Mul:
+        return rest._new_rawargs(c, *rest.args)
+    if rest.is_Add:
+        return sp.Mul(c, rest, evaluate=False)
+    return sp.Mul(c, rest)

@@ -20,7 +20,7 @@ True
 
 import sympy as sp
 
-from .canonical import _merges, _plain, _plain_product, _plain_sum, _sort_args, power
+from .canonical import _merges, _plain, _plain_product, _plain_sum, _sort_args, mul, power
 
 __all__ = ["tree_size", "substitute", "renamed", "bottom_up", "instances", "along", "zeroed", "max_depth",
            "expanded_terms", "diff", "polynomial_in"]
@@ -429,7 +429,7 @@ def _product_with(args, i, da):
     r = None
     if da is not sp.S.One and not (len(rest) == 1 and (da.is_Rational or rest[0].is_Rational)):
         r = _plain_product(rest + (da.args if type(da) is sp.Mul else (da,)))
-    return sp.Mul(*(args[:i] + (da,) + args[i + 1:])) if r is None else r
+    return mul(*(args[:i] + (da,) + args[i + 1:])) if r is None else r
 
 
 def _power_rule(e, dbase):
@@ -449,7 +449,7 @@ def _power_rule(e, dbase):
     True
     """
     b, x = e.base, e.exp
-    scaled = dbase * x                       # SymPy's: a number times a sum is distributed
+    scaled = mul(dbase, x)                   # as SymPy's: a number times a sum is distributed
     if x.is_Rational and (isinstance(b, (sp.Add, sp.Symbol))
                           or (_plain_function(type(b)) and not _merges(b))):
         k = x - 1
@@ -459,7 +459,7 @@ def _power_rule(e, dbase):
             r = _plain_product(own + rest)
             if r is not None:
                 return r
-    return e * (scaled / b)
+    return mul(e, mul(scaled, power(b, sp.S.NegativeOne)))        # e * (scaled / b)
 
 
 def _d(e, s, memo):

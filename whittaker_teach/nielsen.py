@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import sympy as sp
 
+from .canonical import mul, sub
 from .reading import check_reading, nielsen_forms, total_derivative_form
 from .steps import Step, eq, notation, partial, tex, text
 from .verify import check_identity
@@ -31,11 +32,11 @@ def nielsen(red):
         eqs = []
         for c in red._nus:
             qp, q = red._qp[c], S.q[c]
-            e = red._d(dL, qp) - 2 * red._d(Ls, q)                               # (2.4)
+            e = sub(red._d(dL, qp), mul(2, red._d(Ls, q)))                     # (2.4)
             for P, qs, d in zip(red._Pstar, red._qdstar, dq):
-                term = red._d(d, qp) - 2 * red._d(qs, q)
+                term = sub(red._d(d, qp), mul(2, red._d(qs, q)))
                 if term != 0:       # P*0 would ask whether every factor of P is finite
-                    e -= P * term
+                    e = sub(e, mul(P, term))
             eqs.append(e)
         red._cache["nielsen"] = {"2.1": dL, "2.4": eqs}
     return red._cache["nielsen"]

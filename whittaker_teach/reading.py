@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from .canonical import power
+from .canonical import mul, power
 from .dag import bottom_up, expanded_terms, instances, substitute, tree_size
 from .rewrite import RATIONAL_OPS_LIMIT, _ops_above, collected, expanded, factored, pythagoras
 from .verify import check_identity, expand_may_equal
@@ -207,7 +207,7 @@ def tidy(expr, symbols=(), memo=None):
         return f
 
     def term(t):
-        return sp.Mul(*[factor_of(f) for f in sp.Mul.make_args(t)])
+        return mul(*[factor_of(f) for f in sp.Mul.make_args(t)])
     if isinstance(expr, sp.Add) and memo.integer_powers(expr):
         return powers_combined(factor_of(expr), memo)       # a polynomial: collect it whole
     out = sp.Add(*[term(t) for t in sp.Add.make_args(expr)])

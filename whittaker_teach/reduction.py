@@ -36,7 +36,7 @@ import mpmath
 import sympy as sp
 
 from .coordinates import name as _name, sign_assumptions as _assume
-from .canonical import add, mul, power
+from .canonical import add, mul, power, sub
 from .dag import along, diff, polynomial_in, renamed, substitute, tree_size, zeroed
 from .errors import ModelError, ModelTypeError, guarded
 from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
@@ -291,11 +291,11 @@ class Reduction:
         """The nu-th generalized Whittaker equation (1.26), for nu = c."""
         S, Ls, d = self.system, self._Lstar, self._d
         qp, q = self._qp[c], S.q[c]
-        e = self._D(d(Ls, qp)) - d(Ls, q)
+        e = sub(self._D(d(Ls, qp)), d(Ls, q))
         for P, qs in zip(self._Pstar, self._qdstar):
-            term = self._D(d(qs, qp)) - d(qs, q)
+            term = sub(self._D(d(qs, qp)), d(qs, q))
             if term != 0:           # P*0 would ask whether every factor of P is finite
-                e -= mul(P, term)
+                e = sub(e, mul(P, term))
         return e
 
     def _accelerations(self):
@@ -567,8 +567,9 @@ class Reduction:
                                               r"\dot q_\varepsilon\,\Omega_{\dot "
                                               rf"q_\varepsilon {what}}} - \partial\Omega/"
                                               rf"\partial {what} = 0$ at (1.12)",
-                                              [self._chain(v * Ovv, vs, z) + v * self._d(Omv, z)
-                                               - self._d(Om, z) for z in vars_],
+                                              [sub(add(self._chain(mul(v, Ovv), vs, z),
+                                                       mul(v, self._d(Omv, z))), self._d(Om, z))
+                                               for z in vars_],
                                               [sp.S.Zero] * len(vars_))))
         lform = lstar_form(self)
         st.append(Step("1.16", r"the reduced Lagrangian $L^* = \partial\Omega/\partial\dot "
@@ -584,7 +585,7 @@ class Reduction:
                 lab, rf"$\partial L^*/\partial {what} = \Omega_{{\dot q_\varepsilon\dot "
                 r"q_\varepsilon}\,\partial\dot q_\varepsilon/\partial " f"{what} + "
                 rf"\Omega_{{\dot q_\varepsilon {what}}}$",
-                [self._chain(Ovv, vs, z) + self._d(Omv, z) for z in vars_],
+                [add(self._chain(Ovv, vs, z), self._d(Omv, z)) for z in vars_],
                 [self._d(Ls, z) for z in vars_])))
         st.append(Step("1.19", "from (1.14) and (1.17)",
                        lambda: [eq(d("L^*", qp[c]), self._d(Ls, qp[c])) for c in nus],

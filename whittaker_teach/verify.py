@@ -26,6 +26,7 @@ from mpmath import libmp
 from mpmath.libmp import (ComplexResult, mpf_add, mpf_mul, mpf_pow_int, mpf_sqrt, mpf_sum,
                           normalize)
 
+from .canonical import sub
 from .dag import expanded_terms, substitute, tree_size
 from .polywalk import vanishes
 
@@ -159,7 +160,7 @@ def _exact_ways(lhs, rhs):
         return None                    # before building any difference of large sides
     if any(_difference_above(a, b, EXACT_SIZE_LIMIT) for a, b in zip(lhs, rhs)):
         return None                    # a difference too large for an attempt: not built
-    diffs = [a - b for a, b in zip(lhs, rhs)]
+    diffs = [sub(a, b) for a, b in zip(lhs, rhs)]
     if not all(expand_may_vanish(d) for d in diffs):
         return None
     diffs.sort(key=lambda d: tree_size(d, EXACT_SIZE_LIMIT))

@@ -65,3 +65,62 @@ def test_order_key_sorts_as_basic_compare(random_factor):
         except canonical._NoKey:
             continue
         assert ours == sorted(items, key=_args_sortkey), items
+
+
+def _derivation_like(rng, depth=0):
+    """A random piece such as a derivation builds: symbols, tan, sums, roots of sums,
+    products and powers of these (no floats, no numbers but rationals)."""
+    x, y, m, th = sp.symbols("x y m theta")
+    atoms = [x, y, m, sp.tan(th), sp.cos(th), sp.sin(x), x + y, m * sp.tan(th)**2 + m,
+             sp.sqrt(x**2 + y)]
+    r = rng.random()
+    if depth > 1 or r < 0.45:
+        return rng.choice(atoms)
+    if r < 0.6:
+        return _derivation_like(rng, depth + 1)**rng.choice(
+            [2, -1, sp.Rational(1, 2), sp.Rational(-3, 2), 3])
+    parts = [_derivation_like(rng, depth + 1) for _ in range(rng.randint(2, 3))]
+    return sp.Mul(*parts) if r < 0.85 else sp.Add(*parts)
+
+
+def test_sums_with_like_terms_and_a_rational_times_a_sum_are_sympys():
+    """Terms with the same part merge as ``Add.flatten`` merges them (coefficients added,
+    zeros dropped, each term rebuilt as flatten rebuilds it), and a rational times a sum
+    is distributed as ``Mul.flatten``'s rule for two factors does it: argument by
+    argument SymPy's, on sums drawn from a small pool so that terms often meet."""
+    rng = random.Random(29)
+    pool = [_derivation_like(rng) for _ in range(30)]
+    merged = 0
+    for _ in range(1500):
+        terms = []
+        for _ in range(rng.randint(1, 7)):
+            t, r = rng.choice(pool), rng.random()
+            if r < 0.5:
+                t = sp.Mul(sp.Rational(rng.randint(-4, 4), rng.randint(1, 3)), t)
+            elif r < 0.65:
+                t = sp.Add(t, rng.choice(pool))
+            terms.append(t)
+        built, ref = canonical._plain_sum(terms), sp.Add(*terms)
+        assert built is not None and built == ref and built.args == ref.args, terms
+        merged += len(ref.args) < sum(len(sp.Add.make_args(t)) for t in terms)
+        a = sp.Rational(rng.choice([-3, -2, -1, 2, 3, 5]), rng.choice([1, 2, 7]))
+        for args in ((a, ref), (ref, a)):
+            built, sympys = canonical.mul(*args), sp.Mul(*args)
+            assert built == sympys and type(built) is type(sympys), args
+            assert built.args == sympys.args, args
+    assert merged > 500                  # the merging path was taken, often
+
+
+def test_sub_and_negated_are_sympys(random_factor):
+    """``sub(a, b)`` is ``a - b`` and ``negated(a)`` is ``-a``, argument by argument, on
+    random expressions and on derivation-like sums whose terms meet."""
+    rng = random.Random(31)
+    pool = [_derivation_like(rng) for _ in range(20)]
+    for _ in range(1500):
+        make = random_factor if rng.random() < 0.5 else (
+            lambda r: sp.Add(*[r.choice(pool) * r.choice([1, -2, sp.Rational(1, 3)])
+                               for _ in range(r.randint(1, 4))]))
+        a, b = make(rng), make(rng)
+        for built, sympys in ((canonical.sub(a, b), a - b), (canonical.negated(a), -a)):
+            assert built == sympys and type(built) is type(sympys), (a, b)
+            assert built.args == sympys.args, (a, b)
