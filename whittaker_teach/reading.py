@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from .canonical import mul, power
+from .canonical import add, mul, power, sub
 from .dag import bottom_up, expanded_terms, instances, substitute, tree_size
 from .rewrite import RATIONAL_OPS_LIMIT, _ops_above, collected, expanded, factored, pythagoras
 from .verify import check_identity, expand_may_equal
@@ -277,7 +277,7 @@ def check_reading(label, claim, shown, library, red, sample=None, at=None, also=
 def _times(a, b):
     """``a * b``, and 0 at once where ``b`` is 0 (SymPy's 0 * a asks whether every factor
     of ``a`` is finite, a deep query on a large sum; the sum then drops the 0 alike)."""
-    return sp.S.Zero if b == 0 else a * b
+    return sp.S.Zero if b == 0 else mul(a, b)
 
 
 def _primes(red):
@@ -332,14 +332,14 @@ def whittaker_forms(red):
     out = []
     for c in red._nus:
         S, Ls, qp, q, x, pr = _pieces(red, c)
-        e = TotalD(_tidy(red, red._d(Ls, qp), pr), x) - _tidy(red, red._d(Ls, q), pr)
+        e = sub(TotalD(_tidy(red, red._d(Ls, qp), pr), x), _tidy(red, red._d(Ls, q), pr))
         for P, qs in zip(red._Pstar, red._qdstar):
             # - P (d/dx(dq*/dq') - dq*/dq), written term by term so that equal terms of
             # opposite sign cancel as built (the sledge's m tan(theta)(1 + tan^2 theta))
             inner, P = red._d(qs, qp), _tidy(red, P, pr)
-            e += _times(P, _tidy(red, red._d(qs, q), pr))
+            e = add(e, _times(P, _tidy(red, red._d(qs, q), pr)))
             if inner != 0:
-                e -= P * TotalD(_tidy(red, inner, pr), x)
+                e = sub(e, mul(P, TotalD(_tidy(red, inner, pr), x)))
         out.append(e)
     return out
 
@@ -372,9 +372,9 @@ def total_derivative_form(red):
     x = S.q[red._eps]
     terms = [_tidy(red, red._d(Ls, x), pr)]
     for c in red._nus:
-        terms += [_tidy(red, red._d(Ls, red._qp[c]), pr) * red._qpp[c],
-                  _tidy(red, red._d(Ls, S.q[c]), pr) * red._qp[c]]
-    return sp.Add(*terms)
+        terms += [mul(_tidy(red, red._d(Ls, red._qp[c]), pr), red._qpp[c]),
+                  mul(_tidy(red, red._d(Ls, S.q[c]), pr), red._qp[c])]
+    return add(*terms)
 
 
 def nielsen_forms(red):
@@ -385,10 +385,11 @@ def nielsen_forms(red):
     out = []
     for c in red._nus:
         S, Ls, qp, q, x, pr = _pieces(red, c)
-        e = _tidy(red, red._d(dL, qp), pr + [red._qpp[c]]) - 2 * _tidy(red, red._d(Ls, q), pr)
+        e = sub(_tidy(red, red._d(dL, qp), pr + [red._qpp[c]]),
+                mul(2, _tidy(red, red._d(Ls, q), pr)))
         for P, qs in zip(red._Pstar, red._qdstar):
             P = _tidy(red, P, pr)
-            e += (_times(2 * P, _tidy(red, red._d(qs, q), pr))
-                  - _times(P, _tidy(red, red._d(red._D(qs), qp), pr)))
+            e = add(e, sub(_times(mul(2, P), _tidy(red, red._d(qs, q), pr)),
+                           _times(P, _tidy(red, red._d(red._D(qs), qp), pr))))
         out.append(e)
     return out

@@ -530,20 +530,21 @@ class Reduction:
                        check_identity(
             "1.7", r"$\partial\Omega/\partial\dot q_\varepsilon = \sum_\sigma (\partial\tilde L/"
             r"\partial\dot q_\sigma)\,\dot q_\sigma/\dot q_\varepsilon$", Omv,
-            self._sub15(sp.Add(*[self._d(Lt, S.qd[c]) * S.qd[c] for c in sig])) / v, smp)))
+            _over(self._sub15(add(*[mul(self._d(Lt, S.qd[c]), S.qd[c]) for c in sig])), v),
+            smp)))
         st.append(Step("1.8", r"$\partial\Omega/\partial q'_\nu$", lambda: [eq(d("Omega", qp[c]),
                                                           tidy(self._d(Om, qp[c]))) for c in nus],
                        check_identity(
             "1.8", r"$\partial\Omega/\partial q'_\nu = \dot q_\varepsilon\,\partial\tilde L/"
             r"\partial\dot q_\nu$", [self._d(Om, qp[c]) for c in nus],
-            [v * self._sub15(self._d(Lt, S.qd[c])) for c in nus], smp)))
+            [mul(v, self._sub15(self._d(Lt, S.qd[c]))) for c in nus], smp)))
         st.append(Step("1.9", r"$\partial\Omega/\partial q_\sigma$", lambda: [eq(d("Omega", qs[c]),
                                                              tidy(self._d(Om, qs[c]))) for c in sig],
                        check_identity(
             "1.9", r"$\partial\Omega/\partial q_\sigma = \partial\tilde L/\partial q_\sigma$",
             [self._d(Om, qs[c]) for c in sig],
             [self._sub15(self._d(Lt, qs[c])) for c in sig], smp)))
-        E13 = v * Omv - Om
+        E13 = sub(mul(v, Omv), Om)
         st.append(Step("1.13", "the energy integral in the new variables",
                        lambda: [eq(collected(E13, [v]), h)], check_identity(
             "1.13", r"$\dot q_\varepsilon\,\partial\Omega/\partial\dot q_\varepsilon - \Omega$ "
@@ -591,14 +592,14 @@ class Reduction:
                        lambda: [eq(d("L^*", qp[c]), self._d(Ls, qp[c])) for c in nus],
                        self._check_at_112(
             "1.19", r"$\partial L^*/\partial q'_\nu = (1/\dot q_\varepsilon)\,\partial\Omega/"
-            r"\partial q'_\nu$", [self._d(Om, qp[c]) / v for c in nus],
+            r"\partial q'_\nu$", [_over(self._d(Om, qp[c]), v) for c in nus],
             [self._d(Ls, qp[c]) for c in nus])))
         st.append(Step("1.20", "from (1.15) and (1.18)",
                        lambda: [eq(d("L^*", qs[c]), self._d(Ls, qs[c])) for c in sig],
                        self._check_at_112(
             "1.20", r"$\partial L^*/\partial q_\sigma = (1/\dot q_\varepsilon)\,\partial\Omega/"
             r"\partial q_\sigma$ (the OCR prints $1/\dot q_\sigma$)",
-            [self._d(Om, qs[c]) / v for c in sig], [self._d(Ls, qs[c]) for c in sig])))
+            [_over(self._d(Om, qs[c]), v) for c in sig], [self._d(Ls, qs[c]) for c in sig])))
         st.append(Step("1.21", "with (1.8) and (1.9)", lambda: [
             eq(LS(qp[c]), partial("L̃", r"\tilde{L}", S.qd[c])) for c in nus] + [
             eq(LS(qs[c]), partial("L̃", r"\tilde{L}", qs[c]) / v) for c in sig], self._check_at_112(
@@ -606,7 +607,7 @@ class Reduction:
             r"$\partial L^*/\partial q_\sigma = (1/\dot q_\varepsilon)\,\partial\tilde L/"
             r"\partial q_\sigma$",
             [self._sub15(self._d(Lt, S.qd[c])) for c in nus]
-            + [self._sub15(self._d(Lt, qs[c])) / v for c in sig],
+            + [_over(self._sub15(self._d(Lt, qs[c])), v) for c in sig],
             [self._d(Ls, qp[c]) for c in nus] + [self._d(Ls, qs[c]) for c in sig])))
         st += self._constraint_steps()
         st += self._equation_steps()
@@ -690,7 +691,7 @@ class Reduction:
                        "1.26", r"$\dot q_\varepsilon$ times (1.26) is the $\nu$-th equation of "
                        "(1.4) on the energy surface (1.12); the form shown is (1.26)",
                        forms, self._eqs, self, at=sub,
-                       also=([vs * e for e in self._eqs], [eom[c] for c in nus])))]
+                       also=([mul(vs, e) for e in self._eqs], [eom[c] for c in nus])))]
         if S.dependent_coordinates:
             st.append(self._momentum_step())
         self._accelerations()       # (1.26) must be solvable for q''
@@ -717,7 +718,7 @@ class Reduction:
         if S.dependent_coordinates:
             chk = check_identity("from 1.12", r"$dq_{\varepsilon+\beta}/dq_\varepsilon = "
                                  r"\dot q_{\varepsilon+\beta}/\dot q_\varepsilon = \dot q^*$ "
-                                 "(1.23)", [self._sub15(p) / self._v for p in S._phi.values()],
+                                 "(1.23)", [_over(self._sub15(p), self._v) for p in S._phi.values()],
                                  self._qdstar, smp)
         st.append(Step("from 1.12", "time and the dependent coordinates recovered by quadrature",
                        rates, chk))
@@ -800,6 +801,11 @@ class Reduction:
 
 
 LSTAR = notation("L*", "L^{*}")
+
+
+def _over(a, b):
+    """``a / b`` as SymPy builds it, ``Mul(a, Pow(b, -1))`` (:mod:`.canonical`)."""
+    return mul(a, power(b, sp.S.NegativeOne))
 
 
 def _dd(f, x):

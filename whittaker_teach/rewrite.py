@@ -11,6 +11,7 @@ a**2 + a*b*(tan(theta)**2 + 1)
 import sympy as sp
 
 from . import polywalk
+from .canonical import add, mul
 from .dag import expanded_terms, instances, substitute
 
 __all__ = ["collected", "rational", "rational_parts", "pythagoras", "factored"]
@@ -161,8 +162,8 @@ def collected(expr, symbols):
     for mono, c in groups.items():
         if not _ops_above(c, FACTOR_LIMIT):
             c = factored(c)
-        out.append(c * mono)
-    return pythagoras(sp.Add(*out))
+        out.append(mul(c, mono))
+    return pythagoras(add(*out))
 
 
 def _expanded_free_of(expr, symbols):

@@ -45,7 +45,7 @@ import sympy as sp
 from sympy.core.function import AppliedUndef
 
 from .coordinates import T, name, sign_assumptions
-from .canonical import add, mul, power
+from .canonical import add, mul, negated, power
 from .dag import diff, instances, max_depth, substitute, zeroed
 from .errors import ModelError, ModelTypeError, guarded
 from .linear import lu_solve
@@ -552,7 +552,7 @@ class ChaplyginSystem:
     def _energy(self):
         if "E" not in self._cache:
             Lt = self._Ltilde
-            E = sp.Add(*[self.qd[c] * self._d(Lt, self.qd[c]) for c in self._sig], -Lt)
+            E = add(*[mul(self.qd[c], self._d(Lt, self.qd[c])) for c in self._sig], negated(Lt))
             self._cache["E"] = E if self._large else collected(E, self._velocity_symbols())
         return self._cache["E"]
 
