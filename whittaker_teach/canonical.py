@@ -184,7 +184,9 @@ def _plain(t, args):
         return _plain_sum(args)
     kept = [a for a in args if a is not sp.S.One]         # the identity, dropped first
     if len(kept) == 2 and (kept[0].is_Rational or kept[1].is_Rational):
-        return _distributed(*kept)                          # flatten's rules for two
+        a, b = kept if kept[0].is_Rational else kept[::-1]
+        if not a.is_zero and b.as_coeff_Mul()[1].is_Add:
+            return _distributed(a, b)                       # flatten's rule for two
     return _plain_product([f for a in kept for f in (a.args if type(a) is sp.Mul else (a,))])
 
 
@@ -272,14 +274,26 @@ def _plain_product(factors):
             if o is sp.S.One:
                 continue
         out.append(o)
-    if coeff.is_zero or (len(out) == 1 and coeff is not sp.S.One and out[0].is_Add):
+    if coeff.is_zero:
         return None
+    if len(out) == 1 and coeff is not sp.S.One and out[0].is_Add:
+        return _spread(coeff, out[0])
     _sort_args(out)
     if coeff is not sp.S.One:
         out.insert(0, coeff)
     if len(out) < 2:
         return out[0] if out else sp.S.One
     return _built(sp.Mul, out)
+
+
+def _spread(c, s):
+    """A rational ``c`` (not 1) times the sum ``s``, as ``Mul.flatten`` ends a product of
+    a number and one sum: ``Add(*[c*f for f in s.args])``; None where SymPy would not
+    distribute (its global ``distribute`` off, or a non-commutative sum)."""
+    from sympy.core.parameters import global_parameters
+    if not global_parameters.distribute or not s.is_commutative:
+        return None
+    return add(*[mul(c, f) for f in s.args])
 
 
 def _merged_power(b, xs):

@@ -124,3 +124,28 @@ def test_sub_and_negated_are_sympys(random_factor):
         for built, sympys in ((canonical.sub(a, b), a - b), (canonical.negated(a), -a)):
             assert built == sympys and type(built) is type(sympys), (a, b)
             assert built.args == sympys.args, (a, b)
+
+
+def test_a_number_times_one_sum_left_by_merged_powers_is_distributed_as_sympy_does():
+    """Powers of one sum that merge to the sum itself, times a number, leave a number times
+    a sum, which ``Mul.flatten`` distributes; ``mul`` and ``_plain_product`` give SymPy's
+    expression, argument by argument (the derivative of a spring's (x2 - x1)**2)."""
+    rng = random.Random(37)
+    pool = [_derivation_like(rng) for _ in range(20)]
+    spread = 0
+    for _ in range(800):
+        s = sp.Add(*[rng.choice(pool) * rng.choice([1, -1, 2, sp.Rational(1, 3)])
+                     for _ in range(rng.randint(2, 3))])
+        if type(s) is not sp.Add:
+            continue
+        k = rng.choice([2, 3, sp.Rational(3, 2)])
+        factors = [sp.Rational(rng.choice([-2, 3, 5]), rng.choice([1, 2])), s**k, s**(1 - k)]
+        if rng.random() < 0.3:
+            factors.append(rng.choice(pool))
+        rng.shuffle(factors)
+        built, sympys = canonical.mul(*factors), sp.Mul(*factors)
+        assert built == sympys and type(built) is type(sympys), factors
+        assert built.args == sympys.args, factors
+        ours = canonical._plain_product([f for a in factors for f in sp.Mul.make_args(a)])
+        spread += type(sympys) is sp.Add and ours is not None     # distributed here
+    assert spread > 200
