@@ -183,6 +183,8 @@ def _plain(t, args):
     if t is sp.Add:
         return _plain_sum(args)
     kept = [a for a in args if a is not sp.S.One]         # the identity, dropped first
+    if len(kept) < 2:
+        return kept[0] if kept else sp.S.One              # one argument: itself, as built
     if len(kept) == 2 and (kept[0].is_Rational or kept[1].is_Rational):
         a, b = kept if kept[0].is_Rational else kept[::-1]
         if not a.is_zero and b.as_coeff_Mul()[1].is_Add:
@@ -327,6 +329,9 @@ def _plain_sum(terms):
     >>> _plain_sum([x*y + 3*sp.sin(x), -x*y, sp.sin(x)/2]) == 7*sp.sin(x)/2
     True
     """
+    terms = [t for t in terms if t is not sp.S.Zero]      # the identity, dropped first
+    if len(terms) < 2:
+        return terms[0] if terms else sp.S.Zero           # one term: itself, as built
     out, coeffs, merged, number = [], {}, False, sp.S.Zero
     for t in terms:
         for o in (t.args if type(t) is sp.Add else (t,)):

@@ -149,3 +149,15 @@ def test_a_number_times_one_sum_left_by_merged_powers_is_distributed_as_sympy_do
         ours = canonical._plain_product([f for a in factors for f in sp.Mul.make_args(a)])
         spread += type(sympys) is sp.Add and ours is not None     # distributed here
     assert spread > 200
+
+
+def test_one_argument_is_returned_as_built():
+    """``Add`` and ``Mul`` of one argument (the identities dropped) return it as it is,
+    even a product or sum SymPy would build otherwise (factor's 1/2*(x + 2*y))."""
+    x, y = sp.symbols("x y")
+    half = sp.Mul(sp.Rational(1, 2), x + 2 * y, evaluate=False)
+    twice = sp.Add(x, x, evaluate=False)
+    for built, sympys in ((canonical.mul(half, 1), sp.Mul(half, 1)),
+                          (canonical.add(twice, 0), sp.Add(twice, 0)),
+                          (canonical.add(half), sp.Add(half)), (canonical.mul(twice), twice)):
+        assert built is sympys
