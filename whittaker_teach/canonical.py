@@ -239,10 +239,23 @@ def _built(t, args):
     postprocessors where one is registered for the class of an argument (matrix
     expressions register them; they are never among the plain factors)."""
     obj = t._from_args(args, True)
-    keys = tuple(sp.Basic._constructor_postprocessor_mapping)
-    if keys and any(isinstance(a, keys) for a in args):
-        return t._exec_constructor_postprocessors(obj)
+    mapping = sp.Basic._constructor_postprocessor_mapping
+    if len(mapping) != _POSTPROCESSED[0]:        # a class registered since: start again
+        _POSTPROCESSED[:] = [len(mapping), tuple(mapping), {}]
+    _, keys, by_type = _POSTPROCESSED
+    if keys:
+        for a in args:
+            hit = by_type.get(type(a))
+            if hit is None:
+                hit = by_type[type(a)] = issubclass(type(a), keys)
+            if hit:
+                return t._exec_constructor_postprocessors(obj)
     return obj
+
+
+#: the classes with constructor postprocessors, their count, and which argument types
+#: are instances of one (``_built``)
+_POSTPROCESSED = [-1, (), {}]
 
 
 def _plain_product(factors):
