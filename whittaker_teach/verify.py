@@ -881,6 +881,8 @@ def _raw_residual(vecs, i, prec):
         if type(a) is not tuple or type(b) is not tuple or a in _FINITE_SPECIAL \
                 or b in _FINITE_SPECIAL:
             return None
+        if a == b:
+            continue                        # the same bits: the residual is 0
         scale = libmp.fone
         for x in (libmp.mpf_abs(a, prec, "n"), libmp.mpf_abs(b, prec, "n")):
             if libmp.mpf_gt(x, scale):
