@@ -418,7 +418,8 @@ def _product_with(args, i, da):
     numbers among them are rational, ``flatten`` only multiplies the numbers and
     sorts the factors (``_mulsort``); that is done here (:func:`_plain_product`).  In
     any other case (a common base, a float, two factors of which one is rational, a
-    number times a sum, which ``flatten`` distributes) SymPy's ``Mul`` builds it.
+    number times a sum, which ``flatten`` distributes) :func:`.canonical.mul` builds
+    it, with SymPy's ``Mul`` or by the same rules.
 
     >>> x, y = sp.symbols("x y")
     >>> e = 3 * x**2 * sp.sin(y)
@@ -439,7 +440,7 @@ def _power_rule(e, dbase):
     a symbol or a plain function and nothing else in the product has the base b
     (``flatten`` then merges only these two; where dbase * x has a power of b, SymPy
     divides it by b first, which may leave a number times a sum that it distributes);
-    else SymPy's own products.  The base
+    else the two products as SymPy builds them (:func:`.canonical.mul`).  The base
     is not a number (it holds the variable differentiated by; 1/sqrt(2 + I) would
     evaluate otherwise).
 
