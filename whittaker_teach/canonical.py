@@ -293,12 +293,7 @@ def _plain_product(factors):
         return None
     if len(out) == 1 and coeff is not sp.S.One and out[0].is_Add:
         return _spread(coeff, out[0])
-    _sort_args(out)
-    if coeff is not sp.S.One:
-        out.insert(0, coeff)
-    if len(out) < 2:
-        return out[0] if out else sp.S.One
-    return _built(sp.Mul, out)
+    return _assembled(sp.Mul, out, coeff)
 
 
 def _spread(c, s):
@@ -372,13 +367,19 @@ def _plain_sum(terms):
                 out.append(o)
     if merged:
         out = [_term(c, rest) for rest, c in coeffs.items() if c is not sp.S.Zero]
-    if len(out) > 1:
-        _sort_args(out)
-    if number is not sp.S.Zero:
-        out.insert(0, number)
-    if len(out) < 2:
-        return out[0] if out else sp.S.Zero
-    return _built(sp.Add, out)
+    return _assembled(sp.Add, out, number)
+
+
+def _assembled(t, parts, number):
+    """``t`` (Add or Mul) as ``flatten`` returns it: the plain ``parts`` sorted, the
+    rational ``number`` first unless it is the identity; a single argument is itself."""
+    if len(parts) > 1:
+        _sort_args(parts)
+    if number is not t.identity:
+        parts.insert(0, number)
+    if len(parts) < 2:
+        return parts[0] if parts else t.identity
+    return _built(t, parts)
 
 
 def _term(c, rest):
