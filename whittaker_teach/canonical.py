@@ -18,7 +18,7 @@ True
 
 import sympy as sp
 
-__all__ = ["power", "mul", "add", "sub", "negated"]
+__all__ = ["power", "mul", "add", "sub", "negated", "over"]
 
 
 def power(base, exp):
@@ -173,6 +173,16 @@ def sub(a, b):
     True
     """
     return add(a, negated(b))
+
+
+def over(a, b):
+    """``a / b`` as SymPy builds it, ``Mul(a, Pow(b, -1))``, by :func:`mul` and :func:`power`.
+
+    >>> x, y = sp.symbols("x y")
+    >>> over(2*x + y, x + y) == (2*x + y) / (x + y)
+    True
+    """
+    return mul(a, power(b, sp.S.NegativeOne))
 
 
 def _plain(t, args):

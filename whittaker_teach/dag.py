@@ -20,7 +20,7 @@ True
 
 import sympy as sp
 
-from .canonical import _merges, _plain, _plain_product, _plain_sum, _sort_args, mul, power
+from .canonical import _merges, _plain, _plain_product, _plain_sum, _sort_args, mul, over, power
 
 __all__ = ["tree_size", "substitute", "renamed", "bottom_up", "instances", "along", "zeroed", "max_depth",
            "expanded_terms", "diff", "polynomial_in"]
@@ -460,7 +460,7 @@ def _power_rule(e, dbase):
             r = _plain_product(own + rest)
             if r is not None:
                 return r
-    return mul(e, mul(scaled, power(b, sp.S.NegativeOne)))        # e * (scaled / b)
+    return mul(e, over(scaled, b))                                 # e * (scaled / b)
 
 
 def _d(e, s, memo):

@@ -36,7 +36,7 @@ import mpmath
 import sympy as sp
 
 from .coordinates import name as _name, sign_assumptions as _assume
-from .canonical import add, mul, power, sub
+from .canonical import add, mul, over, power, sub
 from .dag import along, diff, polynomial_in, renamed, substitute, tree_size, zeroed
 from .errors import ModelError, ModelTypeError, guarded
 from .reading import (check_reading, cleared_forms, lstar_form, momentum_forms,
@@ -530,7 +530,7 @@ class Reduction:
                        check_identity(
             "1.7", r"$\partial\Omega/\partial\dot q_\varepsilon = \sum_\sigma (\partial\tilde L/"
             r"\partial\dot q_\sigma)\,\dot q_\sigma/\dot q_\varepsilon$", Omv,
-            _over(self._sub15(add(*[mul(self._d(Lt, S.qd[c]), S.qd[c]) for c in sig])), v),
+            over(self._sub15(add(*[mul(self._d(Lt, S.qd[c]), S.qd[c]) for c in sig])), v),
             smp)))
         st.append(Step("1.8", r"$\partial\Omega/\partial q'_\nu$", lambda: [eq(d("Omega", qp[c]),
                                                           tidy(self._d(Om, qp[c]))) for c in nus],
@@ -592,14 +592,14 @@ class Reduction:
                        lambda: [eq(d("L^*", qp[c]), self._d(Ls, qp[c])) for c in nus],
                        self._check_at_112(
             "1.19", r"$\partial L^*/\partial q'_\nu = (1/\dot q_\varepsilon)\,\partial\Omega/"
-            r"\partial q'_\nu$", [_over(self._d(Om, qp[c]), v) for c in nus],
+            r"\partial q'_\nu$", [over(self._d(Om, qp[c]), v) for c in nus],
             [self._d(Ls, qp[c]) for c in nus])))
         st.append(Step("1.20", "from (1.15) and (1.18)",
                        lambda: [eq(d("L^*", qs[c]), self._d(Ls, qs[c])) for c in sig],
                        self._check_at_112(
             "1.20", r"$\partial L^*/\partial q_\sigma = (1/\dot q_\varepsilon)\,\partial\Omega/"
             r"\partial q_\sigma$ (the OCR prints $1/\dot q_\sigma$)",
-            [_over(self._d(Om, qs[c]), v) for c in sig], [self._d(Ls, qs[c]) for c in sig])))
+            [over(self._d(Om, qs[c]), v) for c in sig], [self._d(Ls, qs[c]) for c in sig])))
         st.append(Step("1.21", "with (1.8) and (1.9)", lambda: [
             eq(LS(qp[c]), partial("L̃", r"\tilde{L}", S.qd[c])) for c in nus] + [
             eq(LS(qs[c]), partial("L̃", r"\tilde{L}", qs[c]) / v) for c in sig], self._check_at_112(
@@ -607,7 +607,7 @@ class Reduction:
             r"$\partial L^*/\partial q_\sigma = (1/\dot q_\varepsilon)\,\partial\tilde L/"
             r"\partial q_\sigma$",
             [self._sub15(self._d(Lt, S.qd[c])) for c in nus]
-            + [_over(self._sub15(self._d(Lt, qs[c])), v) for c in sig],
+            + [over(self._sub15(self._d(Lt, qs[c])), v) for c in sig],
             [self._d(Ls, qp[c]) for c in nus] + [self._d(Ls, qs[c]) for c in sig])))
         st += self._constraint_steps()
         st += self._equation_steps()
@@ -718,7 +718,7 @@ class Reduction:
         if S.dependent_coordinates:
             chk = check_identity("from 1.12", r"$dq_{\varepsilon+\beta}/dq_\varepsilon = "
                                  r"\dot q_{\varepsilon+\beta}/\dot q_\varepsilon = \dot q^*$ "
-                                 "(1.23)", [_over(self._sub15(p), self._v) for p in S._phi.values()],
+                                 "(1.23)", [over(self._sub15(p), self._v) for p in S._phi.values()],
                                  self._qdstar, smp)
         st.append(Step("from 1.12", "time and the dependent coordinates recovered by quadrature",
                        rates, chk))
@@ -801,11 +801,6 @@ class Reduction:
 
 
 LSTAR = notation("L*", "L^{*}")
-
-
-def _over(a, b):
-    """``a / b`` as SymPy builds it, ``Mul(a, Pow(b, -1))`` (:mod:`.canonical`)."""
-    return mul(a, power(b, sp.S.NegativeOne))
 
 
 def _dd(f, x):
