@@ -55,8 +55,10 @@ $(SETUP_STAMP): pyproject.toml requirements/constraints.txt $(wildcard whittaker
 	$(PYTHON) -m pip install -q --root-user-action=ignore -c requirements/constraints.txt -e ".[numerics,test,book,lite]"
 	@mkdir -p $(@D) && touch $@
 
-# Debian chromium and poppler-utils (browser test, PDF): installed when root,
-# otherwise a clear failure naming the packages.
+# The Debian packages the tests and the book need (chromium, poppler-utils,
+# fonts-wqy-zenhei, bubblewrap): installed when root, otherwise a clear failure
+# naming them. A prerequisite of `book` and `test`, so both fail (or install)
+# before anything else runs, never midway.
 sysdeps:
 	@bash scripts/system_deps.sh
 
@@ -68,7 +70,7 @@ lite-fetch:
 	@$(PYTHON) scripts/fetch_lite.py --pyodide $(PYODIDE_VERSION)
 
 # ---------------------------------------------------------------- the book
-book: setup
+book: sysdeps setup
 	@$(MAKE) --no-print-directory site pdf-after-site derive
 
 # The Jupyter Book site, then the JupyterLite site inside it (_build/html/lite).
@@ -104,7 +106,7 @@ pdf: setup sysdeps
 # for most of their minute), their log printed when both are done; then the browser
 # test. Every part runs and reports even if an earlier one failed; `make test`
 # still fails if any part failed.
-test: setup
+test: sysdeps setup
 	@mkdir -p _build/logs; log=_build/logs/site-and-pdf.log; status=0; \
 	set -m; $(MAKE) --no-print-directory site pdf-after-site > $$log 2>&1 & site=$$!; set +m; \
 	trap 'kill -- -'$$site' 2>/dev/null || true' EXIT INT TERM; \
@@ -116,7 +118,7 @@ test: setup
 
 # tests/unit and tests/integration; a folder without test files is skipped
 # (pytest would exit 5, "no tests collected").
-unit: setup
+unit: sysdeps setup
 	@dirs=""; \
 	for d in tests/unit tests/integration; do \
 	  if [ -n "$$(find $$d \( -name 'test_*.py' -o -name '*_test.py' \) -print -quit 2>/dev/null)" ]; then \
