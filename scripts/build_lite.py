@@ -105,14 +105,7 @@ def write_notebooks(files: Path, root: Path = ROOT) -> list[str]:
                 dst = out.parent / fig
                 dst.parent.mkdir(parents=True, exist_ok=True)
                 shutil.copy2(src, dst)
-    # the exercises' answer data next to their notebooks: check() finds ./answers/<id>.json
-    # (the kernel runs in the notebook's folder); never under whittaker_teach/ in the wheel
-    answers = root / "exercises" / "answers"
-    if answers.is_dir():
-        dst = files / "exercises" / "answers"
-        dst.mkdir(parents=True, exist_ok=True)
-        for src in sorted(answers.glob("*.json")):
-            shutil.copy2(src, dst / src.name)
+    # the exercises' answer data is package data: the served wheel carries it
     return docs
 
 

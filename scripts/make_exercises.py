@@ -20,7 +20,7 @@ Each exercise is written once, in ``exercises/src/<id>.py`` (Jupyter's
   ``{exercise}`` box and each solution in a ``{solution}`` dropdown
   (sphinx-exercise's gated syntax, which can hold code cells).
 
-and ``exercises/answers/<id>.json``, the exercise's answer data: the
+and ``whittaker_teach/exercises/data/<id>.json``, the exercise's answer data (package data): the
 solution notebook is first run with ``$WHITTAKER_TEACH_COLLECT`` set, so
 that each ``check(id, answer, part=...)`` of the solution records its
 answer as the part's expected one; with the ``# %% exercise`` cell (the
@@ -62,7 +62,7 @@ ROOT = Path(__file__).resolve().parent.parent
 SRC = ROOT / "exercises" / "src"
 STUDENT_DIR = ROOT / "exercises"
 SOLUTION_DIR = ROOT / "exercises" / "solutions"
-ANSWER_DIR = ROOT / "exercises" / "answers"
+ANSWER_DIR = ROOT / "whittaker_teach" / "exercises" / "data"
 
 HEADER = re.compile(r"^# %%(?P<rest>.*)$")
 KERNELSPEC = {"display_name": "Python 3", "language": "python", "name": "python3"}

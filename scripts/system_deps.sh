@@ -17,7 +17,10 @@ else
     [[ -x /usr/bin/chromium ]] || command -v chromium >/dev/null 2>&1 || missing+=(chromium)
 fi
 command -v pdftotext >/dev/null 2>&1 && command -v pdfimages >/dev/null 2>&1 || missing+=(poppler-utils)
-fc-list 2>/dev/null | grep -q "WenQuanYi Zen Hei" || missing+=(fonts-wqy-zenhei)
+# (not `fc-list | grep -q`: grep stops at the first match, fc-list then dies of
+# SIGPIPE, and under pipefail the font would count as missing)
+fonts="$(fc-list 2>/dev/null || true)"
+grep -q "WenQuanYi Zen Hei" <<<"$fonts" || missing+=(fonts-wqy-zenhei)
 command -v bwrap >/dev/null 2>&1 || missing+=(bubblewrap)
 
 if ((${#missing[@]} == 0)); then

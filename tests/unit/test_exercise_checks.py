@@ -683,7 +683,7 @@ def test_every_part_has_points_and_every_exercise_says_if_solvers_are_allowed():
         e = load(ex)
         assert isinstance(e.solvers, bool)
         assert answers_path(ex).name == f"{ex}.json"
-        assert answers_path(ex).parent.name == "answers"
+        assert answers_path(ex).parent.name == "data"
         for p in e.parts.values():
             assert isinstance(p.points, (int, float)) and p.points > 0
     assert load("turning-point").solvers and not load("sledge-L-star").solvers

@@ -27,7 +27,7 @@ it".
 
 The expected answers are data, not code: ``make exercises`` runs each
 exercise's solution (``exercises/src/<id>.py``) and stores the answers in
-``exercises/answers/<id>.json``; :func:`answers_path` says where an
+``whittaker_teach/exercises/data/<id>.json``; :func:`answers_path` says where an
 exercise's data is, :func:`load` gives the exercise (its parts, their
 ``points``, and ``solvers``: whether a graded notebook may use the
 library's solvers).  A string is read as the object it prints: ``str(expr)``

@@ -1,10 +1,11 @@
 """Where an exercise's answer data lives, and how it is read back safely.
 
-``make exercises`` runs each exercise's solution and writes, beside its
-source, ``exercises/answers/<id>.json``: the statement's symbols with their
+``make exercises`` runs each exercise's solution and writes
+``whittaker_teach/exercises/data/<id>.json``: the statement's symbols with their
 assumptions, the domain, the parts (with their points, hints and messages)
-and each part's expected answer.  This module finds that file and reads it;
-nothing in it is package code.
+and each part's expected answer.  The files are package data (the wheel
+carries them, so an installed package checks every exercise from any
+folder); this module finds one and reads it.  Nothing in them is code.
 
 Expressions are stored as ``sympy.srepr`` text and read back by
 :func:`from_srepr`, a restricted reader: Python's :mod:`ast` parses the
@@ -23,10 +24,9 @@ ValueError: answer data: __import__ is not a SymPy constructor allowed here
 
 Search order of :func:`answers_dirs` (the first folder holding
 ``<id>.json`` wins): the folder named by the environment variable
-``WHITTAKER_TEACH_ANSWERS``; ``exercises/answers`` of the source tree
-(editable install: the repository); ``answers/`` in the current folder and
-in its parent (the in-browser site ships them next to the exercise
-notebooks), and ``../exercises/answers`` (a chapter of the in-browser site).
+``WHITTAKER_TEACH_ANSWERS`` (a lecturer's own exercises), then the
+package's ``exercises/data``.  Nothing else: in particular not the current
+folder, where a student could place a file of their own.
 """
 
 from __future__ import annotations
@@ -42,6 +42,7 @@ __all__ = ["answers_dirs", "answers_path", "read_data", "from_srepr", "to_srepr"
            "CONSTRUCTORS", "FORMAT"]
 
 FORMAT = 1
+DATA_DIR = Path(__file__).resolve().parent / "data"
 MAX_DATA_CHARS = 2_000_000
 MAX_NODES = 200_000
 
@@ -64,12 +65,7 @@ def answers_dirs():
     env = os.environ.get("WHITTAKER_TEACH_ANSWERS")
     if env:
         out.append(Path(env))
-    out.append(Path(__file__).resolve().parents[2] / "exercises" / "answers")
-    try:
-        cwd = Path.cwd()
-        out += [cwd / "answers", cwd.parent / "answers", cwd.parent / "exercises" / "answers"]
-    except OSError:                        # the current folder was removed
-        pass
+    out.append(DATA_DIR)
     return out
 
 

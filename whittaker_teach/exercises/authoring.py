@@ -21,7 +21,7 @@ An exercise source ``exercises/src/<id>.py`` holds one cell marked
 The expected answers are not written there: ``make exercises`` runs the
 solution, and each ``check(id, answer, part=...)`` of the solution gives
 that part's expected answer (:func:`collecting`).  :func:`make_data` then
-writes everything to ``exercises/answers/<id>.json`` (:mod:`.answers`), from
+writes everything to ``whittaker_teach/exercises/data/<id>.json`` (:mod:`.answers`), from
 which :func:`exercise_from_data` builds the :class:`~.specs.Exercise` that
 ``check`` uses.
 

@@ -1,7 +1,7 @@
-"""The exercises that can be checked: one per answer data file (``exercises/answers/<id>.json``).
+"""The exercises that can be checked: one per answer data file (``whittaker_teach/exercises/data/<id>.json``).
 
 No expected answer is written here: each exercise's answers are taken from
-its solution by ``make exercises`` and stored as data beside its source
+its solution by ``make exercises`` and stored as package data
 (:mod:`.authoring`, :mod:`.answers`).  :data:`EXERCISES` maps an exercise id
 to its :class:`~whittaker_teach.exercises.specs.Exercise`, read on first use.
 """
