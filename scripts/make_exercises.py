@@ -52,6 +52,7 @@ and inside a code cell, the lines between ``### BEGIN SOLUTION`` and
 from __future__ import annotations
 
 import argparse
+import os
 import re
 import sys
 from pathlib import Path
@@ -62,7 +63,12 @@ ROOT = Path(__file__).resolve().parent.parent
 SRC = ROOT / "exercises" / "src"
 STUDENT_DIR = ROOT / "exercises"
 SOLUTION_DIR = ROOT / "exercises" / "solutions"
-ANSWER_DIR = ROOT / "whittaker_teach" / "exercises" / "data"
+# In this repository the answer data is package data (the wheel carries it); in a course
+# folder of a lecturer's own (no whittaker_teach/ beside scripts/) it is written to
+# exercises/answers/, which WHITTAKER_TEACH_ANSWERS then names for `check` and `grade`.
+ANSWER_DIR = (ROOT / "whittaker_teach" / "exercises" / "data"
+              if (ROOT / "whittaker_teach" / "__init__.py").is_file()
+              else ROOT / "exercises" / "answers")
 
 HEADER = re.compile(r"^# %%(?P<rest>.*)$")
 KERNELSPEC = {"display_name": "Python 3", "language": "python", "name": "python3"}
@@ -284,7 +290,6 @@ def answers_stale(ex_id: str, text: str, answer_dir: Path | None = None) -> bool
 def collect_answers(ex_id: str, text: str, solution, answer_dir: Path | None = None) -> Path:
     """Run the solution notebook collecting its answers; write the answer data (JSON)."""
     import json
-    import os
     import tempfile
     from whittaker_teach.exercises.authoring import COLLECT, make_data
     spec = spec_of(ex_id, text)
@@ -376,6 +381,8 @@ def main(argv: list[str]) -> int:
     if not todo and not collect:
         print("exercise notebooks are up to date")
         return 0
+    # the notebooks are checked against the data written here (inherited by the kernels)
+    os.environ["WHITTAKER_TEACH_ANSWERS"] = str(ANSWER_DIR)
     sys.path.insert(0, str(ROOT / "scripts"))
     from execute_notebooks import execute  # sets PYTHONHASHSEED=0 for the kernels
     for ex_id, text, solution in collect:

@@ -198,7 +198,7 @@ def polynomial_in(expr, s):
         if r is None:
             if not _has(e, s, memo):
                 r = not _singular(e, memo)
-            elif e is s:
+            elif e == s:    # not `is`: SymPy's caches may hold another object for it
                 r = True
             elif e.is_Add or e.is_Mul:
                 r = all(ok(a) for a in e.args)

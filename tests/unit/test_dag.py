@@ -199,6 +199,40 @@ def test_substitute_is_xreplace_argument_by_argument(random_factor):
         assert built == sympys and built.args == sympys.args, (e, mapping)
 
 
+def test_polynomial_in_compares_the_symbol_by_equality_not_identity():
+    """Issue 32: once SymPy's cache has dropped Symbol('x') (its LRU holds 1000 entries),
+    Symbol('x') is a new object while a cached power still holds the old one; the
+    answer must not depend on which object the caller holds."""
+    from sympy.core.cache import clear_cache
+    old = sp.Symbol("x")
+    y = sp.Symbol("y")
+    e = old**3 * sp.sqrt(y) / y + 2 * old * y + sp.tan(y)
+    clear_cache()
+    new = sp.Symbol("x")
+    assert new == old and new is not old
+    assert dag.polynomial_in(e, new) and dag.polynomial_in(e, old)
+    assert dag.zeroed(e, [new]) == e.xreplace({new: 0}) == sp.tan(y)
+
+
+def test_polynomial_in_after_the_denial_of_service_checks():
+    """The order that failed in a full run (tests/unit/test_exercise_checks.py's
+    denial-of-service answers, then this file's test): 6000 new symbols flush
+    SymPy's symbol cache, and x is built afresh."""
+    import sys
+    from pathlib import Path
+    sys.path.insert(0, str(Path(__file__).parent))
+    import test_exercise_checks as checks
+    from whittaker_teach.exercises import check
+    x, y = sp.symbols("x y")
+    e = x**3 * sp.sqrt(y) / y + 2 * x * y + sp.tan(y)
+    check("chaplygin-sleigh", None, part="L_star")
+    for answer in checks.DOS + checks._dos_objects():
+        check("chaplygin-sleigh", answer, part="L_star")
+    x, y = sp.symbols("x y")
+    assert dag.polynomial_in(x**3 * sp.sqrt(y) / y + 2 * x * y + sp.tan(y), x)
+    assert dag.polynomial_in(e, x)
+
+
 def test_polynomial_in_lets_zeroed_stand_for_xreplace(random_factor):
     """Where ``polynomial_in(e, x)`` holds, ``zeroed(e, [x])`` is ``e.xreplace({x: 0})``
     argument by argument; it fails for x under a root, in a denominator or in a
