@@ -28,8 +28,9 @@ The Chaplygin equations (1.4) are derived with the constraints substituted
 refuses, with a :class:`~whittaker_teach.errors.ModelError` that names the
 condition, a system outside the paper's assumptions: a Lagrangian or a
 constraint depending on a dependent coordinate or on t (Chaplygin conditions,
-1.3), a constraint that is not homogeneous of degree one (1.10; then there is
-no energy integral 1.11), a singular kinetic energy.
+1.3), a constraint that is not homogeneous of degree one (1.10; then the energy
+1.11 is not guaranteed to be conserved, and the reduction 1.22-1.26 needs 1.10
+anyway), a singular kinetic energy.
 
 Warning: numerical checks sample coordinates in (0.1, 1.2), velocities of
 modulus in (0.2, 1.5) and parameters without a sign assumption in (0.5, 2);
@@ -531,7 +532,8 @@ class ChaplyginSystem:
     @guarded("checking (1.10)")
     def check_homogeneity(self):
         """Check (1.10): every constraint is homogeneous of degree one in the independent
-        velocities.  Raises ModelError if not (there is then no energy integral 1.11)."""
+        velocities.  Raises ModelError if not: the energy (1.11) is then not guaranteed
+        to be conserved (for some constraints it still is), and (1.22)-(1.26) need (1.10)."""
         if "1.10" not in self._cache:
             res = []
             for c, r in zip(self.dependent_coordinates, self._euler_residuals()):
@@ -543,8 +545,9 @@ class ChaplyginSystem:
                     raise ModelError(
                         f"the constraint {_name(c)}' = {_readable(self.constraints[c.diff(self._t)])}"
                         " (a prime: d/dt) is not "
-                        "homogeneous of degree one in the independent velocities (1.10): "
-                        "there is no energy integral (1.11), so no Whittaker reduction")
+                        "homogeneous of degree one in the independent velocities: (1.10) fails: "
+                        "the energy (1.11) is not guaranteed to be conserved, and the "
+                        "reduction (1.22)-(1.26) needs (1.10)")
                 res.append(chk)
             self._cache["1.10"] = res
         return self._cache["1.10"]

@@ -35,3 +35,19 @@ def test_3_10_coefficient_erratum(sec3):
 def test_direction_minus_one():
     d = section3(direction=-1)
     assert all(s.check.holds for s in d if s.check)
+
+
+def test_3_5_to_3_7_check_the_corrected_form(sec3):
+    """Erratum 3: the OCR prints J thetadot^2 in (3.5), (3.6) and (3.7); the checks compare
+    the corrected form with J theta'^2 and must say so, not call it "the printed" one."""
+    for lab in ("3.5", "3.6", "3.7"):
+        (step,) = sec3.only(lab).steps
+        assert "corrected form" in step.check.claim and "printed" not in step.check.claim
+        assert "erratum 3" in step.check.claim
+        assert step.check.holds
+
+
+def test_3_9_is_labelled_expanded(sec3):
+    """The paper's (3.9) is the general form; its expanded line is unnumbered."""
+    (step,) = sec3.only("3.9").steps
+    assert step.title.startswith("the paper's (3.9), expanded and simplified")

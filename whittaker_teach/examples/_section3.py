@@ -59,15 +59,18 @@ def section3_steps(red):
     printed = (2 * h - k**2 * th**2) / (m * sec2 + J * thp**2)
     st.append(Step("3.5", r"(1.13) solved: $\dot x^2$, with $\theta' = d\theta/dx$",
                    [eq(v**2, printed)], check_identity(
-        "3.5", r"$\dot x^2$ from (1.12) equals the printed form with $J\theta'^2$ (the OCR "
-        r"prints $J\dot\theta^2$, which mixes $t$ and $x$)", red._vstar**2, printed, smp)))
+        "3.5", r"$\dot x^2$ from (1.12) equals the corrected form, with $J\theta'^2$ and "
+        r"$\theta' = d\theta/dx$ (the OCR prints $J\dot\theta^2$, which mixes $t$ and $x$: "
+        "erratum 3)", red._vstar**2, printed, smp)))
     printed = v**2 / 2 * (m * sec2 + J * thp**2) - k**2 * th**2 / 2
     st.append(Step("3.6", r"$\Omega$ (1.6)", [eq(sp.Symbol("Omega"), printed)], check_identity(
-        "3.6", r"the printed $\Omega$ equals (1.6)", printed, red._Omega, smp)))
+        "3.6", r"the corrected form of $\Omega$, with $J\theta'^2$ (the OCR prints "
+        r"$J\dot\theta^2$: erratum 3), equals (1.6)", printed, red._Omega, smp)))
     printed = s * sp.sqrt(2 * h - k**2 * th**2) * sp.sqrt(m * sec2 + J * thp**2)
     st.append(Step("3.7", f"$L^*$ (1.16); the sign is the direction of travel, here ${s:+d}$",
                    [eq(notation("L*", "L^{*}"), printed)], check_identity(
-        "3.7", r"the printed $L^*$ equals (1.16)", printed, red._Lstar, smp)))
+        "3.7", r"the corrected form of $L^*$, with $J\theta'^2$ (the OCR prints "
+        r"$J\dot\theta^2$: erratum 3), equals (1.16)", printed, red._Lstar, smp)))
     st.append(Step("3.8", r"$\dot y^*$ (1.23)", [eq(notation("ẏ*", r"\dot{y}^{*}"),
                                                    red._qdstar[0])], check_identity(
         "3.8", r"$\partial(\dot x\tan\theta)/\partial\dot x = \tan\theta$", red._qdstar[0],
@@ -78,7 +81,8 @@ def section3_steps(red):
                + s * k**2 * th * sp.sqrt(A) / sp.sqrt(R))
     shown = (TotalD(s * sp.sqrt(R) * J * thp / sp.sqrt(A), x)
              + s * k**2 * th * sp.sqrt(A) / sp.sqrt(R))
-    st.append(Step("3.9", r"(1.26) for the sledge, after the $m\tan\theta\,(1 + \tan^2\theta)$ "
+    st.append(Step("3.9", r"the paper's (3.9), expanded and simplified (a line it prints without a "
+                   r"number): (1.26) for the sledge after the $m\tan\theta\,(1 + \tan^2\theta)$ "
                    "terms cancel", [eq(shown, 0)], check_identity(
         "3.9", r"the form shown equals (1.26) (the OCR's last term lacks the root of "
         r"$2h - k^2\theta^2$ and the factor $1 + \tan^2\theta$)", printed, red._eqs[0], smp)))
@@ -101,7 +105,8 @@ def section3_steps(red):
     # point of theta; (3.10) holds on either root (theta'^2 and theta'' = F'F are the same)
     st.append(Step("3.11", "a first integral of (3.10), $C$ a constant, as a square: the paper "
                    r"prints the root $\theta' = F(\theta)$, but $\theta'$ changes sign at each "
-                   r"turning point of $\theta$ (erratum 8)", [eq(thp**2, F**2)], check_zero(
+                   r"turning point of $\theta$; the root holds on each half-swing (remark 8 "
+                   "of the errata)", [eq(thp**2, F**2)], check_zero(
         "3.11", r"$\theta' = \pm F(\theta)$, $\theta'' = F'(\theta)\,F$ satisfy (3.10) for "
         "every $C$", [printed.xreplace(along), printed.xreplace({thp: -F, thpp: diff(F, th) * F})],
         smp_c)))
@@ -126,7 +131,8 @@ def section3_steps(red):
     thdot = F * xdot_shown
     thdd = S.qdd[S.coordinates[1]]
     st.append(Step("3.14", r"$\dot\theta = \theta'\dot x$ (the OCR prints $\theta$ for "
-                   r"$\dot\theta$), squared: the root has no one sign (erratum 8); and its derivative",
+                   r"$\dot\theta$), squared: the root has no one sign (remark 8 of the errata); "
+                   "and its derivative",
                    [eq(thd**2, thdot**2), eq(thdd, -k**2 / J * th)],
                    check_identity(
         "3.14", r"$\dot\theta = \theta'\dot x$ on (3.11), so $\dot\theta^2$ is the form shown, "

@@ -10,6 +10,13 @@ function U = -k^2 theta^2 / 2, pulling theta back to 0), the velocity v along
 the runner (the constraint direction, ydot = xdot tan theta, (3.2)) and the
 reaction R of the plane, across the runner.
 
+The reaction is R = m C thetadot n, n = (-sin theta, cos theta) (chapter 3: the
+multiplier is lambda = -m C thetadot cos theta): it vanishes where theta = +-a
+(thetadot = 0) and is largest, m C a omega, where theta = 0. So the instant drawn,
+T_DRAWN = 7 pi / 4, is one where the heading is still large (theta = a cos 7pi/4)
+and turning towards 0 (thetadot > 0), and R is drawn to scale against its largest
+value (R_FULL at theta = 0).
+
 Run ``python book/figures/systems/sledge_path.py``: it writes
 ``sledge_path.svg`` beside this file (deterministic output).
 """
@@ -25,6 +32,18 @@ import numpy as np  # noqa: E402
 _draw.style("sledge_path")
 
 A_AMP, SPEED = 0.9, 1.0                    # amplitude a (rad) and speed C
+T_DRAWN = 1.75 * np.pi                     # the instant drawn (omega = 1)
+R_FULL = 1.5                               # the arrow of the largest reaction, m C a omega
+
+
+def heading(t):
+    """theta and thetadot of (3.15) with omega = 1 and phase 0."""
+    return A_AMP * np.cos(t), -A_AMP * np.sin(t)
+
+
+def reaction(t):
+    """The sideways reaction R . n = m C thetadot, in units of its largest value m C a omega."""
+    return heading(t)[1] / A_AMP
 
 
 def path(t_end=2.45 * np.pi, n=4001):
@@ -52,8 +71,8 @@ def draw():
     ax.plot(x, y, color="0.55", lw=2.0, ls=(0, (6, 4)))
     ax.text(x[1200], y[1200] - 0.45, "path", color="0.4", ha="center", va="top")
 
-    # the sledge at one instant: t = 2 pi, the heading at its largest, theta = a
-    i = np.searchsorted(np.linspace(0.0, 2.45 * np.pi, len(x)), 2.0 * np.pi)
+    # the sledge at one instant, T_DRAWN: theta = a cos T_DRAWN, turning (R is not zero)
+    i = np.searchsorted(np.linspace(0.0, 2.45 * np.pi, len(x)), T_DRAWN)
     P, h = np.array([x[i], y[i]]), th[i]
     u, nrm = np.array([np.cos(h), np.sin(h)]), np.array([-np.sin(h), np.cos(h)])
     half = 1.0
@@ -83,9 +102,10 @@ def draw():
     arrow(ax, P + half * u, P + (half + 1.1) * u, VELOCITY)
     ax.text(*(P + (half + 1.25) * u), r"$\mathbf{v}$", color=VELOCITY, fontsize=26,
             ha="left", va="bottom")
-    arrow(ax, P, P + 1.5 * nrm, REACTION)
-    ax.text(*(P + 1.6 * nrm), r"$\mathbf{R}$", color=REACTION, fontsize=26,
-            ha="center", va="bottom")
+    R = R_FULL * reaction(T_DRAWN)          # signed, along n
+    arrow(ax, P, P + R * nrm, REACTION)
+    ax.text(*(P + (R + 0.1 * np.sign(R)) * nrm), r"$\mathbf{R}$", color=REACTION, fontsize=26,
+            ha="center", va="bottom" if R > 0 else "top")
 
     # the axes
     x0, y0 = -0.4, y.min() - 1.6
