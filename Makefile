@@ -7,6 +7,7 @@
 #                   JupyterLite site in _build/html/lite), print the sledge derivation
 #   make serve      serve _build/html on http://127.0.0.1:8000 (JupyterLite needs http)
 #   make pdf        the whole book as one PDF (_build/pdf/whittaker-teach.pdf, linked from the site)
+#   make student    the student edition (graded exercises as statements only) in _build/student
 #   make test       setup, then unit + integration tests, doctests, nbval over the
 #                   stored notebook outputs (the site and its PDF built beside them),
 #                   then the browser/PDF tests
@@ -42,10 +43,10 @@ NOTEBOOK_DIRS := book exercises
 
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 
-.PHONY: help setup sysdeps mathjax lite-fetch lite serve bench-lite book site pdf derive test unit slow doctest nbval browser screenshots notebooks exercises figures bench clean
+.PHONY: help setup sysdeps mathjax lite-fetch lite serve bench-lite book site student pdf derive test unit slow doctest nbval browser screenshots notebooks exercises figures bench clean
 
 help:
-	@sed -n '3,18p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,19p' Makefile | sed 's/^# \{0,1\}//'
 
 # ---------------------------------------------------------------- set-up
 setup: $(SETUP_STAMP) mathjax lite-fetch
@@ -82,6 +83,11 @@ site: setup
 lite: setup
 	$(PYTHON) scripts/build_lite.py --pyodide $(PYODIDE_VERSION) --out _build/html/lite
 
+# The student edition (exercises/course.yml names the graded exercises: statements
+# only, no solutions, no answer data) into _build/student/{html,pdf}.
+student: sysdeps setup
+	$(PYTHON) scripts/student_edition.py
+
 # JupyterLite does not work from file://: serve the built site on 127.0.0.1.
 serve:
 	@test -f _build/html/index.html || { echo "serve: run 'make book' first"; exit 1; }
@@ -108,7 +114,7 @@ pdf: setup sysdeps
 # still fails if any part failed.
 test: sysdeps setup
 	@mkdir -p _build/logs; log=_build/logs/site-and-pdf.log; status=0; \
-	set -m; $(MAKE) --no-print-directory site pdf-after-site > $$log 2>&1 & site=$$!; set +m; \
+	set -m; $(MAKE) --no-print-directory site pdf-after-site student > $$log 2>&1 & site=$$!; set +m; \
 	trap 'kill -- -'$$site' 2>/dev/null || true' EXIT INT TERM; \
 	echo "test: building the site and the PDF beside the Python tests (log: $$log)"; \
 	$(MAKE) --no-print-directory --keep-going unit doctest nbval || status=1; \
@@ -164,7 +170,7 @@ pdf-after-site: setup sysdeps
 # and the PDF of `make pdf`: missing Chromium/poppler, site or PDF fail.
 # one test per page load (tests/book/test_site.py), spread over the workers.
 browser: setup sysdeps
-	WT_REQUIRE_SITE=1 WT_REQUIRE_PDF=1 $(PYTHON) -m pytest tests/book -q $(XDIST)
+	WT_REQUIRE_SITE=1 WT_REQUIRE_PDF=1 WT_REQUIRE_STUDENT=1 $(PYTHON) -m pytest tests/book -q $(XDIST)
 
 # Whole-page screenshots of every page at 1280 and 390 px into _build/screenshots/
 # (the browser test keeps only each page's first screen), with the same checks.

@@ -110,8 +110,11 @@ def write_notebooks(files: Path, root: Path = ROOT) -> list[str]:
 
 
 # ------------------------------------------------------------------ wheels, lock
-def build_package_wheel(dest: Path) -> Path:
-    """``pip wheel --no-deps`` of this tree into ``dest`` (emptied first)."""
+def build_package_wheel(dest: Path, withhold=()) -> Path:
+    """``pip wheel --no-deps`` of this tree into ``dest`` (emptied first).
+
+    ``withhold``: exercise ids whose answer data is replaced by the statement's
+    (``answers.withheld``; the student edition's graded exercises)."""
     if dest.exists():
         shutil.rmtree(dest)
     dest.mkdir(parents=True)
@@ -124,6 +127,13 @@ def build_package_wheel(dest: Path) -> Path:
             shutil.copy2(ROOT / name, src / name)
         shutil.copytree(ROOT / "whittaker_teach", src / "whittaker_teach",
                         ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
+        if withhold:
+            from whittaker_teach.exercises.answers import read_data, withheld
+            data = src / "whittaker_teach" / "exercises" / "data"
+            for ex in withhold:
+                (data / f"{ex}.json").write_text(
+                    json.dumps(withheld(read_data(data / f"{ex}.json")), indent=1,
+                               ensure_ascii=False, sort_keys=True) + "\n", encoding="utf-8")
         # the installed setuptools if there is one (no download), else pip's
         # isolated build environment (setuptools from PyPI)
         try:
@@ -222,7 +232,11 @@ SETTINGS_OVERRIDES = {
 }
 
 
-def build(out: Path, work: Path, pyodide_version: str = fetch_lite.PYODIDE_VERSION):
+def build(out: Path, work: Path, pyodide_version: str = fetch_lite.PYODIDE_VERSION,
+          root: Path = ROOT, edition: str = "", withhold=()):
+    """The lite site of the course whose sources are in ``root`` into ``out``;
+    ``edition`` names the work folders (``dist-<edition>``, ``src-<edition>``) so
+    that two editions can be built side by side."""
     _kernel_labextensions()
     from jupyterlite_pyodide_kernel.constants import PYODIDE_VERSION as kernel_pyodide
     if kernel_pyodide != pyodide_version:
@@ -230,9 +244,10 @@ def build(out: Path, work: Path, pyodide_version: str = fetch_lite.PYODIDE_VERSI
                  f"{kernel_pyodide}, not {pyodide_version} (PYODIDE_VERSION in the Makefile)")
     pyodide_dir = fetch_lite.fetch_pyodide(work, pyodide_version)
     wheels_dir = fetch_lite.fetch_wheels(work)
-    pkg = build_package_wheel(work / "dist")
+    suffix = f"-{edition}" if edition else ""
+    pkg = build_package_wheel(work / f"dist{suffix}", withhold)
 
-    src = work / "src"
+    src = work / f"src{suffix}"
     if src.exists():
         shutil.rmtree(src)
     static = src / "static" / "pyodide"
@@ -242,7 +257,7 @@ def build(out: Path, work: Path, pyodide_version: str = fetch_lite.PYODIDE_VERSI
             shutil.copy2(pyodide_dir / name, static / name)
     lock = write_lock(pyodide_dir / "pyodide-lock.json",
                       sorted(wheels_dir.glob("*.whl")) + [pkg], static)
-    docs = write_notebooks(src / "files")
+    docs = write_notebooks(src / "files", root)
     (src / "jupyter-lite.json").write_text(json.dumps(lite_config(), indent=2) + "\n")
     (src / "overrides.json").write_text(json.dumps(SETTINGS_OVERRIDES, indent=2) + "\n")
 
@@ -290,8 +305,14 @@ def main(argv=None):
     ap.add_argument("--out", type=Path, default=ROOT / "_build" / "html" / "lite")
     ap.add_argument("--work", type=Path, default=ROOT / "build" / "lite")
     ap.add_argument("--pyodide", default=fetch_lite.PYODIDE_VERSION)
+    ap.add_argument("--root", type=Path, default=ROOT,
+                    help="the course's sources (_toc.yml, book/, exercises/)")
+    ap.add_argument("--edition", default="", help="names the work folders (e.g. student)")
+    ap.add_argument("--withhold", action="append", default=[], metavar="ID",
+                    help="an exercise whose answer data the wheel carries as statement only")
     args = ap.parse_args(argv)
-    build(args.out.resolve(), args.work.resolve(), args.pyodide)
+    build(args.out.resolve(), args.work.resolve(), args.pyodide, args.root.resolve(),
+          args.edition, args.withhold)
 
 
 if __name__ == "__main__":

@@ -82,3 +82,25 @@ def test_the_in_browser_site_ships_no_loose_answer_files(tmp_path):
     for ex in exercises():
         assert (files / "exercises" / f"{ex}.ipynb").exists()
     assert not list(files.rglob("*.json"))
+
+
+def test_withheld_data_reads_answers_back_without_a_verdict(tmp_path, monkeypatch):
+    """The student edition of a graded exercise: the statement only; check() echoes the
+    answer as read and gives no verdict, for a right and a wrong answer alike."""
+    import json as _json
+    from whittaker_teach.exercises.answers import withheld
+    full = read_data(answers_path("kepler-orbit"))
+    data = withheld(full)
+    text = _json.dumps(data)
+    for p in full["parts"]:
+        assert p["expected"] not in text and p["success"] not in text
+    (tmp_path / "kepler-orbit.json").write_text(text, encoding="utf-8")
+    monkeypatch.setenv("WHITTAKER_TEACH_ANSWERS", str(tmp_path))
+    from whittaker_teach.exercises import check
+    right = "sqrt(m)*sqrt(2*h + 2*m*mu/r)*sqrt(r^2 + rprime^2)"
+    for answer in (right, "sqrt(m)*sqrt(2*h)*sqrt(r^2 + rprime^2)"):
+        f = check("kepler-orbit", answer, part="L_star")
+        assert not f.ok and f.status == "graded", f.message
+        assert f.message.startswith("Read as ") and "sqrt(m)" in f.message and "graded" in f.message
+    assert check("kepler-orbit", None, part="h").status == "unanswered"
+    assert check("kepler-orbit", "2 h", part="h").status == "invalid"

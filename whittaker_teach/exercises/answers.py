@@ -39,7 +39,7 @@ from pathlib import Path
 import sympy as sp
 
 __all__ = ["answers_dirs", "answers_path", "read_data", "from_srepr", "to_srepr",
-           "CONSTRUCTORS", "FORMAT"]
+           "withheld", "CONSTRUCTORS", "FORMAT"]
 
 FORMAT = 1
 DATA_DIR = Path(__file__).resolve().parent / "data"
@@ -100,6 +100,42 @@ def read_data(path):
     if not isinstance(data, dict) or data.get("format") != FORMAT:
         raise ValueError(f"answer data {path}: not format {FORMAT}; run `make exercises`")
     return data
+
+
+#: what the student edition keeps of a graded exercise's data: the statement (its
+#: symbols, domain and parts as asked), nothing computed from the solution
+STATEMENT_KEYS = ("format", "id", "title", "equations", "symbols", "domain", "conditions",
+                  "definitions", "functions", "notes", "solvers")
+STATEMENT_PART_KEYS = ("name", "what", "points", "why_not")
+
+
+def withheld(data):
+    """The statement-only data of a graded exercise, for the student edition.
+
+    Every expected answer, known wrong answer, success message, sign note, tolerance,
+    answer key and the list of symbols an answer depends on is left out; a choice
+    keeps its options' names (and their other spellings), not their messages.  With
+    it, ``check`` reads an answer back and says that the part is graded.
+
+    >>> data = {"format": 1, "id": "e", "title": "t", "symbols": [["x", False]],
+    ...         "domain": {}, "source_sha256": "0" * 64,
+    ...         "parts": [{"name": "a", "what": "w", "points": 2, "expected": "Symbol('x')",
+    ...                    "variables": ["x"], "success": "x, right", "wrong": []}]}
+    >>> withheld(data)["parts"]
+    [{'name': 'a', 'what': 'w', 'points': 2}]
+    >>> withheld(data)["withheld"], "source_sha256" in withheld(data)
+    (True, False)
+    """
+    out = {k: data[k] for k in STATEMENT_KEYS if k in data}
+    out["withheld"] = True
+    parts = []
+    for p in data["parts"]:
+        q = {k: p[k] for k in STATEMENT_PART_KEYS if k in p}
+        if p.get("choices"):
+            q["choices"] = {k: [list(v[0]), ""] for k, v in p["choices"].items()}
+        parts.append(q)
+    out["parts"] = parts
+    return out
 
 
 def to_srepr(expr):

@@ -299,7 +299,10 @@ def exercise_from_data(data):
             kw = dict(name=p["name"], what=p["what"], points=p.get("points", 1),
                       why_not=p.get("why_not", {}), sign_note=p.get("sign_note", ""),
                       success=p.get("success", ""), rtol=p.get("rtol"))
-            if p.get("choices"):
+            if data.get("withheld"):            # the student edition: the statement only
+                if p.get("choices"):
+                    kw.update(choices={k: (tuple(v[0]), "") for k, v in p["choices"].items()})
+            elif p.get("choices"):
                 kw.update(choices={k: (tuple(v[0]), v[1]) for k, v in p["choices"].items()},
                           answer_key=p["answer_key"])
             else:
@@ -312,4 +315,5 @@ def exercise_from_data(data):
     ex = Exercise(data["id"], data["title"], data.get("equations", ""), builder,
                   solvers=bool(data.get("solvers", False)))
     ex.part_points = {p["name"]: p.get("points", 1) for p in data["parts"]}
+    ex.withheld = bool(data.get("withheld"))
     return ex

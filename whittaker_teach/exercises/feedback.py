@@ -25,6 +25,7 @@ _STYLE = {
     "wrong": ("Not yet right", "#c62828", "#ffebee"),
     "unanswered": ("Not answered yet", "#616161", "#f5f5f5"),
     "invalid": ("Cannot check this answer", "#ef6c00", "#fff3e0"),
+    "graded": ("Recorded as read", "#1565c0", "#e3f2fd"),
 }
 
 
@@ -34,8 +35,9 @@ class Feedback:
 
     ``ok`` is True only for a correct answer; ``message`` says why, or what
     kind of difference the checker sees.  ``status`` is one of
-    ``"correct"``, ``"wrong"``, ``"unanswered"`` (the answer is still None)
-    and ``"invalid"`` (not something the checker can read).
+    ``"correct"``, ``"wrong"``, ``"unanswered"`` (the answer is still None),
+    ``"invalid"`` (not something the checker can read) and ``"graded"`` (the
+    student edition of a graded exercise: the answer as read, no verdict).
     """
 
     ok: bool

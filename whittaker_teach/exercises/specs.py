@@ -139,6 +139,7 @@ class Exercise:
     builder: object
     solvers: bool = False
     _built: tuple | None = None
+    withheld: bool = False     # the student edition of a graded exercise: no answers here
 
     def build(self):
         """(names, domain, {part name: Part}), derived once."""
@@ -184,6 +185,39 @@ def _check_choice(ex, part, answer):
             return Feedback(False, message, ex.id, part.name)
     return Feedback(False, f"{answer[:40]!r} is not one of the options: {part.listing()} "
                     "(a string)", ex.id, part.name, "invalid")
+
+
+def read_back(ex, part, answer, max_length=None):
+    """How ``answer`` was read, for a part whose answers are withheld (a graded exercise
+    in the student edition): no verdict, only the answer as the grader will read it."""
+    names, _, _ = ex.build()
+    if answer is None or answer is Ellipsis:
+        what = part.listing() if part.is_choice else f"expected {part.what}"
+        return Feedback(False, f"not answered yet: replace None by your answer ({what})",
+                        ex.id, part.name, "unanswered")
+    graded = ("this part is graded in your course: it is checked when your lecturer "
+              "grades the notebook you hand in")
+    if part.is_choice:
+        key = _norm_choice(answer) if isinstance(answer, str) else None
+        for name, (aliases, _) in part.choices.items():
+            if key in {_norm_choice(a) for a in (name, *aliases)}:
+                return Feedback(False, f"Read as the option {name!r}; {graded}.", ex.id,
+                                part.name, "graded")
+        return Feedback(False, f"{str(answer)[:40]!r} is not one of the options: "
+                        f"{part.listing()} (a string)", ex.id, part.name, "invalid")
+    try:
+        with time_budget():
+            expr = names.resolve(read_answer(answer, max_length or MAX_LENGTH, names.context()))
+            shown = sp.sstr(expr)
+    except AnswerError as exc:
+        return Feedback(False, _sentence(f"{exc}; expected {part.what}"), ex.id, part.name,
+                        "invalid")
+    except TooExpensive as exc:
+        return Feedback(False, _sentence(str(exc) or TOO_EXPENSIVE) + ".", ex.id, part.name,
+                        "invalid")
+    if len(shown) > 300:
+        shown = shown[:300] + " ..."
+    return Feedback(False, f"Read as {shown}; {graded}.", ex.id, part.name, "graded")
 
 
 def check_part(ex, part, answer, max_length=None):
