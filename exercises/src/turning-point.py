@@ -166,8 +166,12 @@ outcome
 # watches how much of the velocity is still along $x$ and, when $\dot x$ is about
 # to vanish, stops with a `ChartError` that says where. Asked to, it continues
 # across the turning point in time and then goes on in $x$, now running backwards
-# (`on_turning_point="switch"`). In time, the full model (1.4) has no trouble at
-# all; $x(t)$ simply turns back:
+# (`on_turning_point="switch"`). In time, the full model in its default
+# *multiplier* form (chapter 3) has no trouble: $x(t)$ simply turns back. The
+# paper's form (1.4) does have trouble there: it divides by $\cos\theta$, which
+# vanishes where $x$ turns back, and `formulation="chaplygin"` stops at that pole
+# with a `ModelError` (chapter 8); the run plotted below is the multiplier form
+# (`traj.formulation`):
 
 # %% solution alt="x against t for the sledge whose amplitude exceeds pi/2: the exact solution (thick grey), the full model in t (dots) and the reduced model in x that switches to time at each turning point of x (thin line) agree; dotted vertical lines mark the turning points, where x runs back."
 import matplotlib.pyplot as plt
@@ -190,6 +194,7 @@ ax.set_xlabel("$t$")
 ax.set_ylabel("$x$")
 ax.legend(fontsize=8)
 plt.show()
+print("full model:", traj.formulation, "form")
 print(f"{len(path.switches)} chart switches; turning points at x =",
       [round(s_tp, 6) for s_tp, _ in path.turning_points])
 

@@ -125,3 +125,53 @@ def test_turning_point_still_reported_with_tol(red):
     q0, qp0, h = ex.reduced_initial(t=ex.period / 4)         # theta = 0, xdot > 0
     with pytest.raises(wt.ChartError, match="turning point"):
         red.simulate(q0, qp0, h, (q0["x"], q0["x"] + 5), P, tol=1e-6)
+
+
+# ----------------------------------------------------------------- stiffness (review C, item 6)
+FAST = {"m": 1, "J": 1, "k": 1, "b": 1}
+FAST_Q0, FAST_QD0 = {"x": 0, "theta": 0.3, "y": 0}, {"x": 100 * math.cos(0.3), "theta": 0}
+
+
+def test_dop853_stability_interval_from_its_tableau():
+    from whittaker_teach.numerics.scene import dop853_stability
+    stages, beta = dop853_stability()
+    assert stages == 12 and 6.3 < beta < 6.5          # Hairer-Wanner II, fig. IV.2.1: ~6.4
+
+
+def test_fast_sleigh_is_stiff_and_gets_an_implicit_or_switching_method(sleigh):
+    """The offset sleigh at speed has an overdamped heading (rates near -50 and -0.01):
+    tol= must not pick an explicit method (DOP853 would need ~28,000 evaluations)."""
+    from whittaker_teach.numerics.scene import stiffness
+    st = stiffness(sleigh, FAST_Q0, FAST_QD0, (0, 300), FAST)
+    assert st.stiff and 49 < st.rate < 51 and st.floor > 20_000
+    tr = sleigh.simulate(FAST_Q0, FAST_QD0, (0, 300), FAST, tol=1e-6)
+    assert tr.method in ("LSODA", "Radau", "BDF") and tr.choice.method == tr.method
+    assert "stiff" in tr.explain() and "stability" in tr.explain()
+    assert tr.nfev < 5_000 and tr.choice.nfev_all < 10_000
+    # the motion is within tol: against Radau at rtol 1e-13 (the two agree within 1e-14)
+    grid = np.linspace(0, 300, 301)
+    ref = sleigh.simulate(FAST_Q0, FAST_QD0, (0, 300), FAST, method="Radau", rtol=1e-13,
+                          atol=1e-20, t_eval=grid)
+    assert _rel(tr(grid), ref.q, ("x", "theta", "y")) <= 1e-6
+
+
+def test_oscillations_are_not_stiff_and_get_an_explicit_method(S, sleigh):
+    """The sledge (b = 0: rates +-i, no decay) and the slow sleigh of chapter 7: DOP853."""
+    from whittaker_teach.numerics.scene import stiffness
+    tr = S.simulate(Q0, QD0, (0, 30), P, tol=1e-8, model="full")
+    assert tr.method == "DOP853" and not tr.choice.stiffness.stiff
+    assert tr.choice.stiffness.rate < 1e-6
+    assert "in the sledge study" in tr.explain() and "not stiff" in tr.explain()
+    st = stiffness(sleigh, Q0, {"x": 1, "theta": 0}, (0, 20 * math.pi), SLEIGH)
+    assert not st.stiff and st.rate < 0.1
+    tr = sleigh.simulate(Q0, {"x": 1, "theta": 0}, (0, 20 * math.pi), SLEIGH, tol=1e-9)
+    assert tr.method == "DOP853"
+
+
+def test_fast_oscillation_is_not_stiffness(S):
+    """A stiff spring (k^2/J = 1e4: the sledge oscillates at omega = 100) has eigenvalues
+    +-100i, no decaying mode: an explicit method, whatever the frequency."""
+    from whittaker_teach.numerics.scene import stiffness
+    st = stiffness(S, Q0, QD0, (0, 1), {"m": 1, "J": 1, "k": 100})
+    assert not st.stiff and st.rate < 1e-6
+    assert np.max(np.abs(st.eigenvalues.imag)) == pytest.approx(100, rel=1e-3)

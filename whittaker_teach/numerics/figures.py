@@ -8,6 +8,10 @@ Writes into ``book/figures/numerics/`` (or ``--out DIR``):
 ``long_run.json/.svg``         hard case 6: 10^4 periods of the sledge, 10^3 of the sleigh
 ``stiff.json``                 hard case 5: k^2/J = 1e4 and 1e6, every method
 ``hard_cases.json``            the outcome of every hard case at full size
+``method_choice.json``         what ``simulate(..., tol=)`` chose on the integrated
+                               scenes of chapters 7-8 and the fast sleigh, against
+                               the cheapest run of each scipy method at equal error
+                               (evaluations and timings, printed as they are taken)
 =============================  ===============================================
 
 The SVG files are deterministic (no date, fixed hash salt); the timings in
@@ -24,7 +28,7 @@ import time
 
 __all__ = ["main", "plot_long_run", "PARTS"]
 
-PARTS = ("work_precision", "long_run", "stiff", "hard_cases")
+PARTS = ("work_precision", "long_run", "stiff", "hard_cases", "method_choice")
 
 
 def _dump(obj, path):
@@ -122,6 +126,26 @@ def _hard_cases(out):
                         "expected": r.expected, "outcome": r.outcome, "error": r.error,
                         "tolerance": r.tolerance})
     _dump(res, os.path.join(out, "hard_cases.json"))
+
+
+def _method_choice(out):
+    from . import hard_cases as hc
+    data = []
+    for name, system, q0, qd0, T, P, tol in hc.choice_scenes():
+        t0 = time.perf_counter()
+        r = hc.choice_costs(system, q0, qd0, T, P, tol, repeat=3)
+        best = r["methods"][r["cheapest"]]
+        print(f"{name} ({time.perf_counter() - t0:.0f} s): tol={tol:g} chose {r['method']} "
+              f"rtol {r['rtol']:.0e}, {r['nfev']} evaluations ({r['nfev_all']} with its "
+              f"check), {1e3 * r['seconds']:.1f} ms, error {r['error']:.1e}; cheapest "
+              f"{r['cheapest']} {best['nfev']}: run x{r['nfev'] / best['nfev']:.2f}, call "
+              f"x{r['nfev_all'] / best['nfev']:.2f}", flush=True)
+        for m, v in r["methods"].items():
+            print(f"  {m:7s} " + ("not reached" if v is None else
+                                  f"rtol {v['rtol']:.0e} nfev {v['nfev']:6d} error "
+                                  f"{v['error']:.1e} {1e3 * v['seconds']:8.1f} ms"), flush=True)
+        data.append({"scene": name, "system": system, "T": T, "params": P, **r})
+    _dump(data, os.path.join(out, "method_choice.json"))
 
 
 def main(argv=None):

@@ -10,6 +10,8 @@ case   what is hard
 5      a stiff-ish spring, k^2/J = 1e4 and 1e6: explicit against implicit methods
 6      long runs: energy drift and phase error against the DLA integrator
 7      round-off under square roots near turning points
+8      the fast sleigh: a stiff scene (an overdamped heading), explicit against
+       implicit, and what ``simulate(..., tol=...)`` chooses
 =====  ====================================================================
 
 Each runs on the sledge (checked against the exact solution) and on the
@@ -34,7 +36,8 @@ from ..errors import ChartError, ModelError
 from .portable import atan2
 
 __all__ = ["CaseResult", "run", "run_all", "CASES", "SLEDGE", "SLEIGH", "sleigh_state",
-           "long_run", "stiff"]
+           "long_run", "stiff", "FAST_SLEIGH", "FAST_T", "fast_sleigh_state", "method_costs",
+           "choice_costs", "choice_scenes", "ALL_METHODS"]
 
 SLEDGE = {"m": 1.0, "J": 1.0, "k": 1.0}
 SLEIGH = {"m": 1.0, "J": 1.0, "k": 1.0, "b": 0.1}
@@ -43,7 +46,7 @@ HALF_PI = math.pi / 2
 CASES = {1: "amplitude close to pi/2", 2: "a > pi/2: turning points of x",
          3: "the full model through theta = pi/2", 4: "C -> 0: the reduction degenerates",
          5: "a stiff-ish spring: explicit against implicit", 6: "long runs",
-         7: "round-off under square roots"}
+         7: "round-off under square roots", 8: "the fast sleigh: stiff"}
 
 
 @dataclass
@@ -498,13 +501,136 @@ def case7(system="sledge", quick=True):
                       "; ".join(notes), bool(ok))
 
 
-_RUNNERS = {1: case1, 2: case2, 3: case3, 4: case4, 5: case5, 6: case6, 7: case7}
+# ----------------------------------------------------------------- case 8
+#: The offset sleigh at speed: b = 1, m = J = k = 1 (review C, item 6).
+FAST_SLEIGH = {"m": 1.0, "J": 1.0, "k": 1.0, "b": 1.0}
+#: Its span: [0, 300].
+FAST_T = 300.0
+ALL_METHODS = ("DOP853", "RK45", "Radau", "BDF", "LSODA")
+_LADDER = tuple(10.0 ** -n for n in range(3, 14))
+
+
+def fast_sleigh_state(speed=100.0, theta0=0.3):
+    """(q0, qdot0): heading 0.3, no turning, xdot = speed cos(0.3)."""
+    return sleigh_state(theta0, 0.0, speed)
+
+
+def _grid_reference(system, q0, qd0, T, P, grid):
+    """The motion at ``grid``: Radau at rtol 1e-13, atol 1e-20 (stable on a stiff scene
+    and as accurate as DOP853 at 1e-12 on the scenes here: they agree within 1e-14)."""
+    return _system(system).simulate(q0, qd0, (0.0, T), P, method="Radau", rtol=1e-13,
+                                    atol=1e-20, t_eval=grid, dense=False)
+
+
+def method_costs(system, q0, qd0, T, P, target, ref=None, methods=ALL_METHODS,
+                 rtols=_LADDER, repeat=1, points=1001):
+    """For each scipy method, the loosest rtol of the ladder whose error, measured as
+    ``simulate(..., tol=)`` measures it (relative to each coordinate's largest value,
+    at ``points`` equally spaced times, against ``ref``), is within ``target``, with its
+    cost: {method: {rtol, error, nfev, njev, seconds}} (None: not reached).  atol 1e-20,
+    no interpolant (``t_eval`` given): the evaluations are the integration's own."""
+    from .scene import ATOL, _rel_diff
+    S = _system(system)
+    grid = np.linspace(0.0, T, points)
+    ref = ref if ref is not None else _grid_reference(system, q0, qd0, T, P, grid)
+    out = {}
+    for meth in methods:
+        out[meth] = None
+        for rtol in rtols:
+            def run_(meth=meth, rtol=rtol):
+                return S.simulate(q0, qd0, (0.0, T), P, method=meth, rtol=rtol, atol=ATOL,
+                                  t_eval=grid, dense=False)
+            try:
+                tr = run_()
+            except ModelError:
+                continue
+            e = _rel_diff(ref.q, tr.q)
+            if e <= target:
+                secs = []
+                for _ in range(repeat):
+                    t0 = time.perf_counter()
+                    run_()
+                    secs.append(time.perf_counter() - t0)
+                out[meth] = {"rtol": rtol, "error": e, "nfev": tr.nfev, "njev": tr.njev,
+                             "seconds": float(np.median(secs))}
+                break
+    return out
+
+
+def choice_costs(system, q0, qd0, T, P, tol, repeat=1, points=1001):
+    """What ``simulate(..., tol=tol)`` chose on a scene, its true error, its cost (the
+    chosen run's evaluations; all evaluations of the call; seconds), and the cheapest
+    run of each scipy method reaching the same true error (:func:`method_costs`)."""
+    from .scene import _rel_diff
+    S = _system(system)
+    grid = np.linspace(0.0, T, points)
+    S.simulate(q0, qd0, (0.0, T), P, tol=tol)                   # compiled, warm
+    secs = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        tr = S.simulate(q0, qd0, (0.0, T), P, tol=tol)
+        secs.append(time.perf_counter() - t0)
+    c = tr.choice
+    ref = _grid_reference(system, q0, qd0, T, P, grid)
+    err = _rel_diff(ref.q, tr(grid))
+    costs = method_costs(system, q0, qd0, T, P, max(err, 1e-13), ref=ref, repeat=repeat,
+                         points=points)
+    reached = {m: v for m, v in costs.items() if v is not None}
+    cheapest = min(reached, key=lambda m: reached[m]["nfev"]) if reached else None
+    fastest = min(reached, key=lambda m: reached[m]["seconds"]) if reached else None
+    return {"tol": tol, "method": c.method, "rtol": c.rtol, "estimated": c.error,
+            "error": err, "nfev": tr.nfev, "nfev_all": int(c.nfev_all),
+            "seconds": float(np.median(secs)),
+            "stiffness": {"rate": c.stiffness.rate, "floor": c.stiffness.floor,
+                          "stiff": c.stiffness.stiff},
+            "methods": costs, "cheapest": cheapest, "fastest": fastest}
+
+
+def choice_scenes():
+    """The integrated scenes of chapters 7-8 on which ``tol=`` chooses a method (the
+    sledge's scenes get its closed form, no integration): (name, system, q0, qdot0, T,
+    params, tol)."""
+    T7 = 20 * math.pi
+    fq, fqd = fast_sleigh_state()
+    return [("ch. 7: offset sleigh, b = 0.1", "offset_sleigh", *sleigh_state(0.3, 0.0, 1.0 / math.cos(0.3)),
+             T7, SLEIGH, 1e-9),
+            ("ch. 7 ex. 5: the sleigh backwards", "offset_sleigh",
+             *sleigh_state(0.3, 0.0, -1.0 / math.cos(0.3)), 2 * T7, SLEIGH, 1e-9),
+            ("ch. 8: the fast sleigh, tol 1e-6", "offset_sleigh", fq, fqd, FAST_T, FAST_SLEIGH,
+             1e-6),
+            ("ch. 8: the fast sleigh, tol 1e-9", "offset_sleigh", fq, fqd, FAST_T, FAST_SLEIGH,
+             1e-9)]
+
+
+def case8(system="offset_sleigh", quick=True):
+    """The fast sleigh: ``tol=`` detects the stiffness and picks LSODA, whose chosen run
+    costs at most 3 times the cheapest scipy method reaching the same error; DOP853
+    needs about its stability floor whatever the tolerance."""
+    if system != "offset_sleigh":
+        return CaseResult(8, system, CASES[8], "only the offset sleigh (b = 1) is stiff",
+                          "the sledge has no decaying mode (b = 0): not stiff", True)
+    q0, qd0 = fast_sleigh_state()
+    res = choice_costs("offset_sleigh", q0, qd0, FAST_T, FAST_SLEIGH, 1e-6)
+    best = res["methods"][res["cheapest"]]
+    ok = (res["method"] in ("LSODA", "Radau", "BDF") and res["error"] <= 1e-6
+          and res["nfev"] <= 3 * best["nfev"])
+    d = res["methods"]["DOP853"]
+    return CaseResult(8, system, CASES[8],
+                      "tol=1e-6 picks an implicit or switching method, within 1e-6, at most "
+                      "3x the cheapest method's evaluations",
+                      f"chose {res['method']} rtol {res['rtol']:.0e} ({res['nfev']} evaluations, "
+                      f"error {res['error']:.1e}); cheapest {res['cheapest']} {best['nfev']}; "
+                      f"DOP853 {d['nfev'] if d else 'not reached'} (stability floor "
+                      f"{res['stiffness']['floor']:.0f})", ok, res["error"], 1e-6, res)
+
+
+_RUNNERS = {1: case1, 2: case2, 3: case3, 4: case4, 5: case5, 6: case6, 7: case7, 8: case8}
 
 
 def run(case, system="sledge", quick=True):
-    """Run one hard case (1-7) on ``"sledge"`` or ``"offset_sleigh"``."""
+    """Run one hard case (1-8) on ``"sledge"`` or ``"offset_sleigh"``."""
     if case not in _RUNNERS:
-        raise ModelError(f"no hard case {case!r}: the cases are 1-7")
+        raise ModelError(f"no hard case {case!r}: the cases are 1-8")
     if system not in ("sledge", "offset_sleigh"):
         raise ModelError(f"the hard cases run on 'sledge' and 'offset_sleigh', not {system!r}")
     return _RUNNERS[case](system, quick)

@@ -25,7 +25,11 @@ stops when rho falls to ``turning_tol`` (default 1e-3).  From there a short
 integration in time tells what happens next.  With
 ``on_turning_point="raise"`` (default) a :class:`~whittaker_teach.ChartError`
 names the coordinate and the value of q_eps where qdot_eps vanished (or, if it
-only became small, where the chart became nearly singular).  With
+only became small, where the chart became nearly singular).  Whether qdot_eps
+vanishes is decided within the integration error: a motion that only comes within
+that error of a turning point (the sledge at a = pi/2 - 1e-12, rtol 1e-10) may be
+reported as turning, and one that turns back by less than it as not; the message
+says so, and a tighter rtol decides (chapter 8).  With
 ``"switch"`` the path continues in time across the turning point and goes
 back to the reduced equations, in the direction q_eps now runs, once rho
 exceeds 4 ``turning_tol``; ``path.switches`` and ``path.turning_points`` say
@@ -455,11 +459,14 @@ class _Run:
                                             f"end of the span, {e} = {s_t:.10g}"))
                 return
             err = ChartError(
-                f"qdot_{e} vanishes at {e} = {s_t:.10g} (t = {t_t:.10g}): a turning point of "
-                f"{e}.  Beyond it {e} runs backward, so it cannot serve as the independent "
-                f"variable (1.5: q' = qdot/qdot_{e} blows up); the reduced model stopped at "
-                f"{e} = {s:.10g}.  Pass on_turning_point='switch' to continue across it "
-                "(in time, then in the other direction)")
+                f"qdot_{e} vanishes, or nearly vanishes, within the integration error at "
+                f"{e} = {s_t:.10g} (t = {t_t:.10g}): a turning point of {e}.  Beyond it {e} "
+                f"runs backward, so it cannot serve as the independent variable (1.5: "
+                f"q' = qdot/qdot_{e} blows up); the reduced model stopped at {e} = {s:.10g}.  "
+                f"A motion that only comes within the integration error of a turning point "
+                f"(qdot_{e} small but of one sign) cannot be told from one at this "
+                f"tolerance: tighten rtol to decide.  Pass on_turning_point='switch' to "
+                "continue across it (in time, then in the other direction)")
             err.coordinate, err.value, err.t = e, s_t, t_t
             raise err
         if len(sol.t_events[1]):

@@ -68,7 +68,8 @@ class Choice:
     tighter; for the closed form, its rounding error), ``why`` (plain words),
     ``tried``: every run made on the way, as (model, method, rtol, estimated
     error, evaluations); ``check_nfev``: the evaluations of the run that checked
-    the chosen one.  ``str(choice)`` is the explanation.
+    the chosen one; ``stiffness``: the :class:`~.scene.Stiffness` test of a full-model
+    integration (None otherwise); ``nfev_all``: every evaluation the choice made.  ``str(choice)`` is the explanation.
     """
 
     model: str
@@ -79,6 +80,8 @@ class Choice:
     why: str
     tried: list = field(default_factory=list)
     check_nfev: int = 0
+    stiffness: object = None
+    nfev_all: int = 0
 
     def __str__(self):
         import textwrap

@@ -12,12 +12,19 @@ candidates are tried cheapest first:
    millisecond for 1000 points, no code generated);
 2. **an integration**: for a system, the full model in t (formulation
    ``"auto"``); for a reduction, the reduced model (1.26) in q_eps, since a
-   path in q_eps is what was asked (the study finds the full model 1.4-3.3
-   times cheaper in evaluations down to 1e-12, but the reduced model reaching
-   the lower floor at a small amplitude, 3.8e-14 against 1.8e-13).  DOP853
-   (the cheapest by evaluations at every target of the study but one), atol
-   tiny, rtol = tol / 10 to start.  The error is *estimated*, not assumed: the
-   run is repeated at rtol / 10 and the difference is the estimate; if it
+   path in q_eps is what was asked (the sledge study of chapter 7 finds the
+   full model 1.4-3.3 times cheaper in evaluations down to 1e-12).  The method:
+   DOP853, the cheapest by evaluations at every target but one *in the sledge
+   study* (an oscillation with no decaying mode), unless the scene is **stiff**
+   (:func:`stiffness`): the Jacobian of the right-hand side at the start has a
+   mode decaying so fast that DOP853, held by its stability interval
+   (h * rate <= 6.39), would spend at least ``STIFF_FLOOR`` evaluations on
+   stability alone.  Then LSODA, a switching method (Adams while the motion
+   is not stiff, BDF with the Jacobian when it is), runs first, and is kept if
+   all its runs together cost fewer evaluations than DOP853's stability floor;
+   otherwise DOP853 runs too and the cheaper of the two chosen runs is kept.
+   atol tiny, rtol = tol / 10 to start.  The error is *estimated*, not assumed:
+   the run is repeated at rtol / 10 and the difference is the estimate; if it
    exceeds ``tol`` the tolerance is tightened, down to scipy's smallest, 2.3e-14.
 
 If no candidate reaches ``tol``, a ModelError gives the best error available.
@@ -56,7 +63,8 @@ from ..errors import ModelError
 from . import validate
 from .results import Choice, CoordDict, Path, Trajectory
 
-__all__ = ["scene", "Scene", "simulate_within", "FLOOR", "MIN_RTOL", "ATOL", "EXACT_ERROR"]
+__all__ = ["scene", "Scene", "simulate_within", "stiffness", "Stiffness", "dop853_stability",
+           "FLOOR", "MIN_RTOL", "ATOL", "EXACT_ERROR", "STIFF_FLOOR", "STIFF_METHOD"]
 
 #: The smallest relative error the study shows the full model reaching (10 periods).
 FLOOR = 1e-13
@@ -68,6 +76,11 @@ ATOL = 1e-20
 EXACT_ERROR = 1e-15
 #: Output points of a closed-form trajectory or path when none are asked for.
 POINTS = 1001
+#: Evaluations that DOP853's stability limit alone must cost before a scene counts as stiff
+#: (and LSODA is tried): below it, stability cannot dominate the cost of any run worth a switch.
+STIFF_FLOOR = 1000
+#: The method tried on a stiff scene: it switches between non-stiff (Adams) and stiff (BDF).
+STIFF_METHOD = "LSODA"
 
 
 # ----------------------------------------------------------------- the closed form
@@ -193,6 +206,94 @@ def _exact_path(red, ex, span, dense):
                 list(S.coordinates), _dense=interp if dense else None)
 
 
+# ----------------------------------------------------------------- stiffness
+@lru_cache(maxsize=1)
+def dop853_stability():
+    """(stages, beta): the evaluations per step of scipy's DOP853 and the length of the
+    real interval [-beta, 0] on which its stability function R(z) = 1 + z b^T (I - zA)^-1 1
+    (from scipy's own tableau) has |R| <= 1: a decaying mode of rate ``lam`` keeps the
+    step below beta / lam, or the run blows up.
+
+    >>> stages, beta = dop853_stability()
+    >>> stages, round(beta, 2)
+    (12, 6.39)
+    """
+    from scipy.integrate._ivp import dop853_coefficients as dc
+    n = dc.N_STAGES
+    A, b = np.asarray(dc.A[:n, :n], dtype=float), np.asarray(dc.B, dtype=float)
+
+    def unstable(x):
+        z = -x
+        return abs(1 + z * b @ np.linalg.solve(np.eye(n) - z * A, np.ones(n))) > 1 + 1e-12
+    xs = np.linspace(0.0, 20.0, 20001)
+    bad = next(x for x in xs[1:] if unstable(x))
+    lo, hi = bad - 1e-3, bad
+    for _ in range(50):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if unstable(mid) else (mid, hi)
+    return n, float(lo)
+
+
+@dataclass
+class Stiffness:
+    """What :func:`stiffness` found at the start of a scene: ``rate`` (the fastest decay
+    rate, max of -Re(lambda) over the Jacobian's eigenvalues, 0 if none decays),
+    ``eigenvalues``, ``floor`` (the evaluations DOP853 must spend over the span to keep
+    h * rate inside its stability interval, whatever the tolerance) and ``stiff``
+    (floor >= STIFF_FLOOR)."""
+
+    rate: float
+    eigenvalues: object
+    floor: float
+    stiff: bool
+
+    def __str__(self):
+        return (f"fastest decay rate at the start {self.rate:.3g}; DOP853's stability floor "
+                f"{self.floor:.0f} evaluations: {'stiff' if self.stiff else 'not stiff'}")
+
+
+def stiffness(system, q0, qdot0, t_span, params):
+    """The stiffness test of ``simulate(..., tol=...)``: the eigenvalues of the Jacobian
+    of the full model's right-hand side (multiplier or (1.4) form, as ``"auto"``) at the
+    initial state, by central differences, and what they cost an explicit method.
+
+    A mode with eigenvalue lambda, Re(lambda) < 0, must be kept stable: DOP853's step
+    stays below beta / |Re lambda| (beta = 6.39, :func:`dop853_stability`) even after
+    the mode has died out, so the span costs at least 12 rate T / beta evaluations.
+    A fast *oscillation* (lambda = +-i omega) gives rate 0: it must be followed step by
+    step for accuracy anyway, and is not stiffness.  Only the start is examined: a scene
+    that becomes stiff later is not detected (LSODA's own switch would be)."""
+    from . import codegen
+    from .ivp import as_fun
+    t_span = validate.check_span(t_span, "t_span")
+    fm = codegen.time_model(system, "auto")
+    inp = validate.time_input(system, q0, qdot0, t_span, params, "DOP853", 1e-9, None,
+                              "auto", None, None, None, 1e-2)
+    y0 = np.asarray(fm.initial_state(inp.q, inp.v, inp.p), dtype=float)
+    f = as_fun(fm.rhs, inp.p, len(y0))
+    cols = []
+    for i in range(len(y0)):
+        d = 1e-6 * max(1.0, abs(y0[i]))
+        up, down = y0.copy(), y0.copy()
+        up[i] += d
+        down[i] -= d
+        cols.append((f(t_span[0], up) - f(t_span[0], down)) / (2 * d))
+    jac = np.array(cols).T
+    if not np.all(np.isfinite(jac)):
+        return Stiffness(0.0, np.array([]), 0.0, False)
+    lam = np.linalg.eigvals(jac)
+    rate = max(0.0, float(np.max(-lam.real)))
+    stages, beta = dop853_stability()
+    floor = stages * rate * abs(t_span[1] - t_span[0]) / beta
+    return Stiffness(rate, lam, float(floor), bool(floor >= STIFF_FLOOR))
+
+
+def _cost(res, n):
+    """Evaluations of one run: nfev, plus n for each Jacobian (what a difference quotient
+    of n columns costs; counted even where scipy already counts them in nfev)."""
+    return res.nfev + n * getattr(res, "njev", 0)
+
+
 # ----------------------------------------------------------------- integrations
 def _rel_diff(q1, q2):
     """max over the coordinates of |q1 - q2| / (the coordinate's largest value, at least
@@ -217,7 +318,7 @@ def _ladder(tol):
     return out
 
 
-def _integrate(run, compare, tol, model, tried):
+def _integrate(run, compare, tol, model, tried, method="DOP853", n=0):
     """Climb the ladder: (result, rtol, error) of the first run whose estimated error (its
     difference from a run ten times tighter) is within tol; (None, best) otherwise.
     ``run(rtol, check)``: ``check`` is True for the run that only checks another (it
@@ -232,16 +333,16 @@ def _integrate(run, compare, tol, model, tried):
     for r in _ladder(tol):
         res, ref = at(r, False), at(max(r / 10, MIN_RTOL), True)
         err = compare(res, ref)
-        tried.append((model, "DOP853", r, err, res.nfev))
+        tried.append((model, method, r, err, _cost(res, n)))
         if best is None or err < best[2]:
             best = (res, r, err)
         if err <= tol:
-            return res, r, err, (ref.nfev, sum(v.nfev for v in cache.values()))
+            return res, r, err, (_cost(ref, n), sum(_cost(v, n) for v in cache.values()))
     return None, best[1], best[2], None
 
 
-def _no_model(tol, what, model, rtol, err):
-    where = f"the {model}, DOP853 at rtol {rtol:.1e}, against a run at rtol {MIN_RTOL:g}"
+def _no_model(tol, what, model, rtol, err, method="DOP853"):
+    where = f"the {model}, {method} at rtol {rtol:.1e}, against a run at rtol {MIN_RTOL:g}"
     return ModelError(f"no model reaches the relative error {tol:g} for this {what}: the "
                       f"best available is about {err:.1e} ({where}, scipy's smallest); ask "
                       f"for tol >= {2 * err:.0e}")
@@ -304,26 +405,63 @@ def _full_within(S, q0, qdot0, t_span, params, *, tol, model, method, rtol, atol
                          "(only the built-in sledge has one)")
     grid = t_eval if t_eval is not None else np.linspace(t_span[0], t_span[1], POINTS)
 
-    def run(r, check):
-        d = (not check and dense) if t_eval is not None else True
-        return S.simulate(q0, qdot0, t_span, params, method="DOP853", rtol=r, atol=ATOL,
-                          t_eval=t_eval, dense=d)
+    def runner(method):
+        def run(r, check):
+            d = (not check and dense) if t_eval is not None else True
+            return S.simulate(q0, qdot0, t_span, params, method=method, rtol=r, atol=ATOL,
+                              t_eval=t_eval, dense=d)
+        return run
 
     def compare(a, b):
         if t_eval is not None:
             return _rel_diff(a.q, b.q)
         return _rel_diff(a(grid), b(grid))
-    tr, r, err, counts = _integrate(run, compare, tol, "full", tried)
-    if tr is None:
-        raise _no_model(tol, S.name, "full model", r, err)
+    st = stiffness(S, q0, qdot0, t_span, params)
+    n = len(st.eigenvalues) or 2 * len(S.coordinates)              # the state's size
+    stages, beta = dop853_stability()
+    found = {}
+    if st.stiff:
+        found[STIFF_METHOD] = _integrate(runner(STIFF_METHOD), compare, tol, "full", tried,
+                                         STIFF_METHOD, n)
+    lsoda = found.get(STIFF_METHOD)
+    if lsoda is None or lsoda[0] is None or lsoda[3][1] > st.floor:
+        found["DOP853"] = _integrate(runner("DOP853"), compare, tol, "full", tried)
+    reached = {m: v for m, v in found.items() if v[0] is not None}
+    if not reached:
+        method, (_, r, err, _) = min(found.items(), key=lambda kv: kv[1][2])
+        raise _no_model(tol, S.name, "full model", r, err, method)
+    method = min(reached, key=lambda m: (_cost(reached[m][0], n), m))
+    tr, r, err, counts = reached[method]
+    everything = sum(v[3][1] for v in reached.values()) + 2 * n      # + the stiffness test
     closed = ("model='full' was asked; " if model == "full" else
               "" if not has_closed_form(S) else
               "the closed form does not apply here (cos theta = 0 at the start); ")
-    tr.choice = Choice("full", "DOP853", r, tol, err, (
-        f"{closed or f'no closed form for the {S.name}; '}the full model in t "
-        f"({tr.formulation} form) with DOP853 is the cheapest integration by evaluations at "
-        f"the study's targets; rtol {r:.1e} is the loosest whose estimated error (against "
-        f"a run at rtol/10) is within tol ({counts[1]} evaluations in all)"), tried, counts[0])
+    lead = (f"{closed or f'no closed form for the {S.name}; '}the full model in t "
+            f"({tr.formulation} form)")
+    stab = (f"the Jacobian at the start has a mode decaying at rate {st.rate:.3g}, so DOP853, "
+            f"whose step must keep h * rate within its stability interval ({beta:.2f}), would "
+            f"spend at least {st.floor:.0f} evaluations on stability alone, whatever the "
+            f"tolerance (stiff)")
+    if method == STIFF_METHOD:
+        dop = found.get("DOP853")
+        how = (f": {stab}; so {STIFF_METHOD} runs, a switching method: Adams steps while "
+               f"the motion is not stiff, BDF steps with the Jacobian while it is (a "
+               f"Jacobian counted as {n} evaluations)" + ("" if dop is None else
+                                  f", cheaper than DOP853 ({_cost(dop[0], n)} evaluations)"
+                                  if dop[0] is not None else ", DOP853 not reaching tol"))
+    elif st.stiff:
+        cost = "not reaching tol" if lsoda[0] is None else f"{_cost(lsoda[0], n)} evaluations"
+        how = (f": {stab}; but {STIFF_METHOD} cost more ({cost} for its chosen run), so "
+               f"DOP853, the cheapest by evaluations in the sledge study")
+    else:
+        how = (f" with DOP853, the cheapest integration by evaluations in the sledge study "
+               f"(chapter 7); not stiff: the fastest decay rate at the start, {st.rate:.2g}, "
+               f"costs DOP853's stability at most {st.floor:.0f} evaluations over the span "
+               f"(below {STIFF_FLOOR})")
+    tr.choice = Choice("full", method, r, tol, err, (
+        f"{lead}{how}; rtol {r:.1e} is the loosest whose estimated error (against a run "
+        f"at rtol/10) is within tol ({everything} evaluations in all, with the {2 * n} of the "
+        f"stiffness test)"), tried, counts[0], st, everything)
     if not dense and t_eval is None:
         tr._dense = None
     return tr
@@ -383,14 +521,15 @@ def _reduced_within(red, q0, qp0, h, span, params, *, tol, model, method, rtol, 
               "is not x); " if has_closed_form(S) else "")
     lead = (f"model='reduced' was asked: the reduced model (1.26) runs in {e}"
             if model == "reduced" else
-            f"{closed}a path in {e} is asked, so the reduced model (1.26) runs (the study "
-            "finds the full model in t 1.4-3.3 times cheaper by evaluations down to 1e-12: "
-            "system.simulate(..., tol=...) for a motion in t)")
+            f"{closed}a path in {e} is asked, so the reduced model (1.26) runs (the sledge "
+            "study finds the full model in t 1.4-3.3 times cheaper by evaluations down to "
+            "1e-12: system.simulate(..., tol=...) for a motion in t)")
     path.choice = Choice("reduced", "DOP853", r, tol, err, (
-        f"{lead}; DOP853, rtol "
+        f"{lead}; DOP853 (the cheapest in the sledge study; the reduced model is not "
+        f"tested for stiffness), rtol "
         f"{r:.1e}, the loosest whose estimated error (against a run at rtol/10"
         f"{'' if path._dense is not None else ', compared at the end point'}) is within "
-        f"tol ({counts[1]} evaluations in all)"), tried, counts[0])
+        f"tol ({counts[1]} evaluations in all)"), tried, counts[0], None, counts[1])
     if not dense:
         path._dense = None
     return path
@@ -430,9 +569,9 @@ def scene(system, q0, qdot0, t_span, params, tol=1e-6, *, points=1001):
     from ..reduction import Reduction
     note = ""
     if isinstance(system, Reduction):
-        note = (f"given the reduction in {system._eps.func.__name__}: the study finds the "
-                "reduced model needs 1.4-3.3x the full model's evaluations, so the full model "
-                "runs; ")
+        note = (f"given the reduction in {system._eps.func.__name__}: the sledge study finds "
+                "the reduced model needs 1.4-3.3x the full model's evaluations, so the full "
+                "model runs; ")
         system = system.system
     t_span = validate.check_span(t_span, "t_span")
     t_eval = np.linspace(t_span[0], t_span[1], points)
@@ -444,11 +583,7 @@ def scene(system, q0, qdot0, t_span, params, tol=1e-6, *, points=1001):
                      "form exists for the sledge (error ~1e-15)", EXACT_ERROR, tr.t, q, 0,
                      lambda tt: _named(tr(tt)))
     nfev = tr.nfev + c.check_nfev
-    why = (note + f"no closed form for the {system.name}; the full model (formulation "
-           f"{tr.formulation}) with DOP853 is the cheapest by evaluations at the study's "
-           f"targets; rtol = {c.rtol:.0e} (estimated error {c.error:.0e} <= {tol:g}, against a "
-           "run at rtol/10)")
-    return Scene("full", "DOP853", c.rtol, why, c.error, tr.t, q, nfev,
+    return Scene("full", c.method, c.rtol, note + c.why, c.error, tr.t, q, nfev,
                  lambda tt: _named(tr(tt)))
 
 
