@@ -9,6 +9,7 @@ printed and checked step by step with SymPy, for any Chaplygin-type system.
 
 Importing the package is cheap: SymPy and the modules that use it are
 loaded on first use of ``ChaplyginSystem``, ``examples`` and the rest.
+The classical forms of the equations of motion are in ``whittaker_teach.forms``.
 """
 
 from importlib import import_module
