@@ -103,4 +103,4 @@ def test_withheld_data_reads_answers_back_without_a_verdict(tmp_path, monkeypatc
         assert not f.ok and f.status == "graded", f.message
         assert f.message.startswith("Read as ") and "sqrt(m)" in f.message and "graded" in f.message
     assert check("kepler-orbit", None, part="h").status == "unanswered"
-    assert check("kepler-orbit", "2 h", part="h").status == "invalid"
+    assert check("kepler-orbit", "2 3", part="h").status == "invalid"

@@ -518,7 +518,9 @@ def test_messages_read_well():
     assert "closed at position 6 was never opened" in f.message
     f = check("kepler-orbit", "exec('1')", part="h")
     assert "calls exec(...)" in f.message and "maths functions" in f.message
-    f = check("kepler-orbit", "2m*mu", part="h")
+    f = check("kepler-orbit", "2m*mu", part="h")          # an implicit product, read back
+    assert f.read == "2*m*mu" and f.status == "wrong" and "Read as 2*m*mu." in str(f)
+    f = check("kepler-orbit", "2 3*m", part="h")           # two numbers apart: not guessed
     assert "write products with *" in f.message
     f = check("kepler-orbit", "zeta*m", part="h")
     assert f.message.count("expected") == 1 and "zeta" in f.message

@@ -77,12 +77,14 @@ def parts(exercise_id):
     return {name: p.what for name, p in ex.parts.items()}
 
 
-def check(exercise_id, answer, part=None):
+def check(exercise_id, answer, part=None, graded=False):
     """Check ``answer`` to ``part`` of exercise ``exercise_id``: a :class:`Feedback`.
 
     ``part`` may be omitted when the exercise has a single part.  Never
     raises; ``None`` (the placeholder of the student notebooks) gives "not
-    answered yet".
+    answered yet".  A typed answer (a string) is read back before the verdict.
+    ``graded=True`` (the grader's checks): hints name the kind of mistake only,
+    with no quantity that reveals the right answer.
     """
     import os
     if os.environ.get("WHITTAKER_TEACH_COLLECT"):
@@ -98,7 +100,7 @@ def check(exercise_id, answer, part=None):
         _record(feedback, answer)
         return feedback
     try:
-        feedback = _check(exercise_id, answer, part)
+        feedback = _check(exercise_id, answer, part, graded)
     except (Exception, TooExpensive) as exc:  # noqa: BLE001 - a checker must answer
         where = (exercise_id[:40] if isinstance(exercise_id, str) else "",
                  part[:40] if isinstance(part, str) else None)
@@ -125,7 +127,7 @@ def _record(feedback, answer):
         pass
 
 
-def _check(exercise_id, answer, part):
+def _check(exercise_id, answer, part, graded=False):
     from .specs import check_part
     cat = _catalog()
     if not isinstance(exercise_id, str) or exercise_id not in cat:
@@ -146,4 +148,4 @@ def _check(exercise_id, answer, part):
     if ex.withheld:
         from .specs import read_back
         return read_back(ex, ex.parts[part], answer)
-    return check_part(ex, ex.parts[part], answer)
+    return check_part(ex, ex.parts[part], answer, graded=graded)

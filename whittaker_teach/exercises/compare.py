@@ -134,6 +134,30 @@ class Domain:
 class Verdict:
     ok: bool
     hint: str = ""
+    kind: str = ""          # the kind of difference (GRADED_HINTS), without its quantities
+
+    @property
+    def graded_hint(self):
+        """The hint for a graded check: the kind of mistake, no quantity that reveals
+        the right answer (no factor, constant, point or symbol list)."""
+        return GRADED_HINTS.get(self.kind, self.hint)
+
+
+#: what a graded check says for each kind of difference
+GRADED_HINTS = {
+    "complex": "your answer takes complex values where the right answer is real",
+    "zero-expected": "the right answer is identically 0 and yours is not",
+    "zero": "your answer is 0, and the right one is not",
+    "part": "your answer is right on part of the domain only",
+    "sign": "the sign is wrong",
+    "constant-factor": "your answer is off by a constant factor",
+    "factor": "your answer is off by a factor: one is missing, extra, or has the wrong power",
+    "power": "your answer looks like the right expression to some power: check the exponent",
+    "term": "a term of your answer is missing, extra, or wrong",
+    "inner": "your answer differs inside one factor (a square root or a denominator)",
+    "constant": "your answer differs from the right one by a constant",
+    "other": "your answer is not equal to the right one",
+}
 
 
 class _Fn:
@@ -555,18 +579,24 @@ def _explain(answer, expected, domain, sign_note, fa, fe, pts, A, E):
                        "answer can")
     real_E = all(abs(mpmath.im(e)) <= TOL * max(1, abs(e)) for e in E)
     if real_E and any(abs(mpmath.im(a)) > TOL * max(1, abs(a)) for a in A):
+        inner = (_inner_hint(answer, expected, fa, fe, syms, pts, domain)
+                 or _argument_hint(answer, expected, fa, syms, pts))
+        if inner:         # a power or a factor changed under a root: say that, not "signs"
+            return Verdict(False, inner + " (so your answer takes complex values where the "
+                           "right answer is real)", "inner")
         return Verdict(False, "your answer takes complex values where the right answer is real: "
-                       "check the signs under a square root (or a logarithm)")
+                       "check the signs under a square root (or a logarithm)", "complex")
     zero_E = all(abs(e) <= TOL for e in E)
     if zero_E:
         deps = [str(s) for s in syms if depends_on(fa, s, pts[0], pts, domain)]
         extra = f"; it depends on {', '.join(deps)}" if deps else ""
-        return Verdict(False, f"the right answer is identically 0 and yours is not{extra}")
+        return Verdict(False, f"the right answer is identically 0 and yours is not{extra}",
+                       "zero-expected")
     if all(abs(a) <= TOL for a in A):
-        return Verdict(False, "your answer is 0, and the right one is not")
+        return Verdict(False, "your answer is 0, and the right one is not", "zero")
     part = _part_of_domain(answer, A, E, pts)       # cheap, and the most useful then
     if part:
-        return Verdict(False, part)
+        return Verdict(False, part, "part")
     p0 = pts[0]
     with mpmath.workdps(DPS):
         R = [a / e if abs(e) > TOL else None for a, e in zip(A, E)]
@@ -576,9 +606,9 @@ def _explain(answer, expected, domain, sign_note, fa, fe, pts, A, E):
         c = _nice(Rk[0])
         if isinstance(c, sp.Basic) and c == -1:
             return Verdict(False, f"the sign is wrong (your answer is -1 times the right one)"
-                           f"{note}")
+                           f"{note}", "sign")
         return Verdict(False, f"your answer is off by a constant factor: it is {c} times the "
-                       "right one")
+                       "right one", "constant-factor")
 
     def ratio(p):
         a, e = fa(p), fe(p)
@@ -590,11 +620,12 @@ def _explain(answer, expected, domain, sign_note, fa, fe, pts, A, E):
             or depends_on(fe, s, p0, pts, domain)]
     mono = _monomial(ratio, p0, pts, used, domain)
     if mono is not None:
-        return Verdict(False, _monomial_text(*mono))
+        return Verdict(False, _monomial_text(*mono), "factor")
     k = _power_of(fa, fe, pts)
     if k is not None and k != 1:
         return Verdict(False, f"your answer looks like the right expression to the power {k}: "
-                       "check the exponent (a square for a square root, or the other way round?)")
+                       "check the exponent (a square for a square root, or the other way round?)",
+                       "power")
     for b in _bases(expected) + [b for b in _bases(answer) if b not in _bases(expected)]:
         k = _power_of(ratio, _Fn(b, syms), pts)
         if k is not None:
@@ -606,16 +637,18 @@ def _explain(answer, expected, domain, sign_note, fa, fe, pts, A, E):
                 what = f"the power of the factor ({b}) is too {'low' if k < 0 else 'high'} " \
                        f"by {abs(k)}"
             return Verdict(False, f"your answer is {_power_text(b, k)} times the right one, "
-                           f"up to sign: {what}")
-    hint = _term_hint(answer, expected, fa, fe, syms, pts, domain) or \
-        _inner_hint(answer, expected, fa, fe, syms, pts, domain)
+                           f"up to sign: {what}", "factor")
+    hint = _term_hint(answer, expected, fa, fe, syms, pts, domain)
     if hint:
-        return Verdict(False, hint)
+        return Verdict(False, hint, "term")
+    hint = _inner_hint(answer, expected, fa, fe, syms, pts, domain)
+    if hint:
+        return Verdict(False, hint, "inner")
     with mpmath.workdps(DPS):
         D = [a - e for a, e in zip(A, E)]
     if all(_close(d, D[0]) for d in D):
         return Verdict(False, f"your answer differs from the right one by a constant "
-                       f"(yours minus the right one is {_nice(D[0])})")
+                       f"(yours minus the right one is {_nice(D[0])})", "constant")
 
     def diff(p):
         a, e = fa(p), fe(p)
@@ -629,7 +662,27 @@ def _explain(answer, expected, domain, sign_note, fa, fe, pts, A, E):
                and not depends_on(fa, s, p0, pts, domain)]
     if missing:
         msg += f"; your answer does not depend on {', '.join(missing)}, the right one does"
-    return Verdict(False, msg)
+    return Verdict(False, msg, "other")
+
+
+def _argument_hint(answer, expected, fa, syms, pts, limit=20):
+    """Is the answer the right one with the argument of one function changed?"""
+    mine = [f for f in answer.atoms(sp.Function) if len(f.args) == 1]
+    right = [f for f in expected.atoms(sp.Function) if len(f.args) == 1]
+    tried = 0
+    for r in right:
+        for m in mine:
+            if m.func is not r.func or m == r:
+                continue
+            tried += 1
+            if tried > limit:
+                return ""
+            fc = _Fn(expected.xreplace({r: m}), syms)
+            if all(_close(fc(p), a) for p, a in zip(pts, (fa(p) for p in pts))
+                   if fc(p) is not None):
+                return (f"the rest is right, but the argument of {r.func.__name__}(...) is "
+                        "not the right one")
+    return ""
 
 
 def _subsets(n):

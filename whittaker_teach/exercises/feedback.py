@@ -45,6 +45,7 @@ class Feedback:
     exercise: str = ""
     part: str | None = None
     status: str = ""
+    read: str = ""          # a typed answer as the checker read it, shown before the verdict
 
     def __post_init__(self):
         if not self.status:
@@ -58,10 +59,14 @@ class Feedback:
         bits = [b for b in (self.exercise, self.part) if b]
         return f"[{', '.join(bits)}] " if bits else ""
 
+    @property
+    def _read(self):
+        return f"Read as {self.read}. " if self.read else ""
+
     def __str__(self):
         if self.status == "unanswered":
             return f"{self._where}{self.message}"
-        return f"{self._where}{_STYLE[self.status][0]}. {self.message}"
+        return f"{self._where}{self._read}{_STYLE[self.status][0]}. {self.message}"
 
     def __repr__(self):
         return f"Feedback(ok={self.ok}, {str(self)!r})"
@@ -74,6 +79,8 @@ class Feedback:
             text = msg
         else:
             text = f"<strong>{label}.</strong> {msg}"
+        if self.read:
+            text = (f'Read as <code class="wt-read">{html.escape(self.read)}</code>. ' + text)
         return (f'<div class="wt-feedback wt-feedback-{self.status}" style="border-left: 4px '
                 f'solid {border}; background: {background}; padding: 0.4em 0.8em; '
                 f'margin: 0.2em 0; color: #212121;"><span style="color: {border};">{where}</span> '
@@ -84,4 +91,5 @@ class Feedback:
         msg = self.message.replace("*", r"\*").replace("_", r"\_")
         if self.status == "unanswered":
             return f"{self._where}{msg}"
-        return f"{self._where}**{label}.** {msg}"
+        read = f"Read as `{self.read}`. " if self.read else ""
+        return f"{self._where}{read}**{label}.** {msg}"

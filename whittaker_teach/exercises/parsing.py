@@ -232,6 +232,64 @@ def _syntax(text):
     return "write products with *, powers with ** or ^, e.g. '2*m*g*y'"
 
 
+_INVERSE_LOOKALIKE = re.compile(
+    r"\b(a?(?:sin|cos|tan|sec|csc|cot)h?)\s*(?:\^|\*\*)\s*\(?\s*[-\u2212]\s*1\b"
+    r"|\b(a?(?:sin|cos|tan|sec|csc|cot)h?)\u207b\u00b9")
+
+
+def _inverse_lookalike(text):
+    """``sin^-1(x)`` is read by some as arcsin, by others as 1/sin: refuse it."""
+    m = _INVERSE_LOOKALIKE.search(text)
+    if m:
+        f = m.group(1) or m.group(2)
+        raise AnswerError(f"{f}^-1 is ambiguous: write a{f}(x) for the inverse function, or "
+                          f"1/{f}(x) for the reciprocal")
+
+
+_TOKEN = re.compile(r"(?P<num>\d+(?:\.\d*)?(?:[eE][+-]?\d+)?|\.\d+(?:[eE][+-]?\d+)?)"
+                    r"|(?P<name>[^\W\d]\w*)|(?P<open>\()|(?P<close>\))|(?P<space>\s+)"
+                    r"|(?P<other>.)")
+
+
+def implicit_products(text, functions=None):
+    """``text`` with ``*`` put where two operands stand side by side, and whether any was.
+
+    Only where the reading is unambiguous: a number before a name or a bracket
+    (``2h``, ``2(x+1)``), a closing bracket before a name, a number or a bracket
+    (``(a+b)c``), two names apart (``C cos(theta)``, ``J theta'``), a name before
+    a bracket that is not a call (a maths function or a coordinate ``functions``
+    is called; without ``functions``, any name before a bracket is).  Two numbers
+    apart (``2 3``) are left as they are: an error.
+
+    >>> implicit_products("2h - k^2 theta^2")
+    ('2*h - k^2*theta^2', True)
+    >>> implicit_products("C cos(theta) + (a+b)(a-b) + 2(x) + sqrt (2)", functions=())
+    ('C*cos(theta) + (a+b)*(a-b) + 2*(x) + sqrt (2)', True)
+    >>> implicit_products("theta(x) + 2e5 + v0*g_0", functions={"theta"})
+    ('theta(x) + 2e5 + v0*g_0', False)
+    """
+    out, prev, changed = [], None, False       # prev: the kind of the last operand token
+    for m in _TOKEN.finditer(text):
+        kind, tok = m.lastgroup, m.group()
+        if kind == "space":
+            out.append(tok)
+            continue
+        starts = kind in ("num", "name", "open")
+        if starts and prev is not None:
+            p_kind, p_tok = prev
+            call = kind == "open" and p_kind == "name" and (
+                functions is None or p_tok in ALLOWED_FUNCTIONS or p_tok in functions
+                or p_tok in _GLOBALS)
+            if not call and not (p_kind == "num" and kind == "num"):
+                while out and out[-1].isspace():
+                    out.pop()
+                out.append("*")
+                changed = True
+        out.append(tok)
+        prev = (kind, tok) if kind in ("num", "name", "close") else None
+    return "".join(out), changed
+
+
 def parse_string(text, max_length=MAX_LENGTH, context=None):
     """Parse a formula string safely, without evaluating it; AnswerError says what is wrong.
 
@@ -246,9 +304,12 @@ def parse_string(text, max_length=MAX_LENGTH, context=None):
         if re.search(r"√(?![\s(\w.])|√\s*$", text):
             raise AnswerError("√ must be followed by a bracket, a name or a number, as in "
                               "√(2*h) or √J")
+    _inverse_lookalike(text)
     text = to_ascii(text, None if context is None else context.functions)
+    _inverse_lookalike(text)
     _check_string(text, 4 * max_length, context)
     text = _primes(text)
+    text, _ = implicit_products(text, None if context is None else context.functions)
     try:
         code = stringify_expr(text, dict(_LOCALS), dict(_GLOBALS), _TRANSFORMATIONS)
         tree = ast.parse(code, mode="eval")

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 import zlib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import sympy as sp
 
@@ -220,10 +220,13 @@ def read_back(ex, part, answer, max_length=None):
     return Feedback(False, f"Read as {shown}; {graded}.", ex.id, part.name, "graded")
 
 
-def check_part(ex, part, answer, max_length=None):
+def check_part(ex, part, answer, max_length=None, graded=False):
     """Check one answer against one part: a :class:`Feedback`.
 
     ``max_length``: of a string answer (default: the limit for typed answers).
+    ``graded``: the hints name the kind of mistake only, never a quantity that
+    reveals the right answer (a factor, a constant, a percentage); a practice
+    check (the default) keeps the detailed hints.
     """
     names, domain, _ = ex.build()
     if answer is None or answer is Ellipsis:
@@ -234,13 +237,24 @@ def check_part(ex, part, answer, max_length=None):
         return _check_choice(ex, part, answer)
     try:
         with time_budget():
-            return _check_expression(ex, part, answer, names, domain, max_length)
+            return _check_expression(ex, part, answer, names, domain, max_length, graded)
     except TooExpensive as exc:
         return Feedback(False, _sentence(str(exc) or TOO_EXPENSIVE) + ".", ex.id, part.name,
                         "invalid")
 
 
-def _check_expression(ex, part, answer, names, domain, max_length=None):
+def _check_expression(ex, part, answer, names, domain, max_length=None, graded=False):
+    """The verdict on an expression answer; a typed one (a string) is read back."""
+    read = {}
+    feedback = _judge_expression(ex, part, answer, names, domain, max_length, read, graded)
+    if isinstance(answer, str) and feedback.status != "invalid" and "expr" in read:
+        shown = sp.sstr(read["expr"])
+        feedback = replace(feedback, read=shown if len(shown) <= 200 else shown[:197] + "...")
+    return feedback
+
+
+def _judge_expression(ex, part, answer, names, domain, max_length, read, graded=False):
+    """The verdict; ``read["expr"]`` is set to the answer as read."""
     try:
         expr = names.resolve(read_answer(answer, max_length or MAX_LENGTH, names.context()))
         if expr.has(sp.Integral, sp.Sum):
@@ -248,7 +262,9 @@ def _check_expression(ex, part, answer, names, domain, max_length=None):
                 raise AnswerError("your answer contains an unevaluated integral or sum: "
                                   "evaluate it (this part's answer is a formula)")
             from .quadrature import numeric_value
+            read["expr"] = expr
             expr = numeric_value(expr)
+        read.setdefault("expr", expr)
     except AnswerError as exc:
         return Feedback(False, _sentence(f"{exc}; {part.listing()}"), ex.id, part.name,
                         "invalid")
@@ -270,7 +286,7 @@ def _check_expression(ex, part, answer, names, domain, max_length=None):
                             ex.id, part.name)
         expr = expr.xreplace({s: pts[0][s] for s in extra})
     if not part.expected.free_symbols and not expr.free_symbols:
-        return _check_number(ex, part, expr)
+        return _check_number(ex, part, expr, graded)
     verdict = compare(expr, part.expected, domain, seed, part.sign_note, part.rtol)
     if verdict.ok:
         return Feedback(True, part.success or f"{part.what} is right.", ex.id, part.name)
@@ -281,7 +297,8 @@ def _check_expression(ex, part, answer, names, domain, max_length=None):
                         terms=verdict.hint.startswith("your answer is not equal"))
     if other:
         return Feedback(False, other, ex.id, part.name)
-    return Feedback(False, _sentence(verdict.hint) + ".", ex.id, part.name)
+    return Feedback(False, _sentence(verdict.graded_hint if graded else verdict.hint) + ".",
+                    ex.id, part.name)
 
 
 def _other_part(ex, part, expr, domain, seed, terms=True):
@@ -315,8 +332,12 @@ def _other_part(ex, part, expr, domain, seed, terms=True):
     return ""
 
 
-def _check_number(ex, part, expr):
-    """A number against a number: equal within part.rtol (default 1e-10), or by how much not."""
+def _check_number(ex, part, expr, graded=False):
+    """A number against a number: equal within part.rtol (default 1e-10) relative to the
+    right value at every magnitude, or which way it is off.
+
+    A lecturer's known wrong values (``wrong``) get their own message.  A graded check
+    says only "too large" or "too small"; a practice check adds by how much."""
     fn = _Fn(expr, [])
     got, want = fn({}), _Fn(part.expected, [])({})
     if got is None:
@@ -325,14 +346,20 @@ def _check_number(ex, part, expr):
                         f"{part.listing()}", ex.id, part.name, "invalid")
     got, want = complex(got), complex(want)
     rtol = 1e-10 if part.rtol is None else part.rtol
-    if abs(got - want) <= rtol * max(1.0, abs(want)):
+    if _within(got, want, rtol):
         return Feedback(True, part.success or f"{part.what} is right.", ex.id, part.name)
+    for wrong, message in part.wrong:
+        value = _Fn(wrong, [])({})
+        if value is not None and _within(got, complex(value), rtol):
+            return Feedback(False, message, ex.id, part.name)
     if abs(got.imag) > 1e-12 * max(1.0, abs(got)):
         return Feedback(False, "Your answer is a complex number; the right one is real.",
                         ex.id, part.name)
     if want.real and abs(got.real + want.real) <= rtol * abs(want.real):
         return Feedback(False, "The sign is wrong.", ex.id, part.name)
     side = "too large" if got.real > want.real else "too small"
+    if graded:
+        return Feedback(False, f"Your number is {side}.", ex.id, part.name)
     if not want.real:
         return Feedback(False, f"Your number is {side}: the right value is 0.", ex.id,
                         part.name)
@@ -342,6 +369,15 @@ def _check_number(ex, part, expr):
                         f"the right value {tolerance}.", ex.id, part.name)
     return Feedback(False, f"Your number is {side} by {_percent(got.real, want.real)} of the "
                     f"right value {tolerance}.", ex.id, part.name)
+
+
+def _within(got, want, rtol):
+    """|got - want| <= rtol |want| (relative at every magnitude; absolute only for 0).
+
+    >>> _within(0.5372873646, 0.5372879846, 1e-6), _within(1157.0, 1157.0000001, 1e-9)
+    (False, True)
+    """
+    return abs(got - want) <= rtol * (abs(want) if want else 1.0)
 
 
 def _percent(got, want):
