@@ -14,6 +14,7 @@ options (``choices``).
 from __future__ import annotations
 
 import math
+import re
 import zlib
 from dataclasses import dataclass, field, replace
 
@@ -57,6 +58,9 @@ class Names:
         for name, s in self.symbols.items():
             if "_" in name.strip("_"):             # g_0 is also g0 (and g₀, by the notation)
                 self.alias.setdefault(name.replace("_", ""), s)
+            m = re.fullmatch(r"([^\W\d_]+)(\d+)", name)
+            if m:                                  # v0 is also v_0 (and v₀, by the notation)
+                self.alias.setdefault(f"{m.group(1)}_{m.group(2)}", s)
         for g, latin in _GREEK.items():
             for name, s in list(self.alias.items()):
                 if name.startswith(latin):
@@ -69,6 +73,24 @@ class Names:
         """The :class:`~whittaker_teach.exercises.parsing.Context` for reading strings."""
         return Context(self.alias, self.functions, self.definitions)
 
+    def split(self, name, most=4):
+        """``name`` as a product of the exercise's symbol names (``mb`` -> m, b), or None.
+
+        >>> Names(sp.symbols("m b J theta")).split("mbtheta")
+        ['m', 'b', 'theta']
+        """
+        if len(name) > 40:
+            return None
+        best = {0: []}
+        for i in range(len(name)):
+            if i not in best or len(best[i]) >= most:
+                continue
+            for j in range(len(name), i, -1):
+                if name[i:j] in self.alias and j not in best:
+                    best[j] = best[i] + [name[i:j]]
+        found = best.get(len(name))
+        return found if found and len(found) > 1 else None
+
     def resolve(self, expr):
         """Map every free symbol of expr (by name) to the exercise's symbol."""
         sub = {}
@@ -79,6 +101,9 @@ class Names:
             canon = self.alias.get(s.name)
             if canon is None:
                 note = self.notes.get(s.name)
+                split = None if note else self.split(s.name)
+                if split:
+                    note = f"did you mean {'·'.join(split)}? write products with *"
                 raise AnswerError(f"your answer uses the symbol {s.name[:30]}, which is not a "
                                   "symbol of this exercise" + (f" ({note})" if note else ""))
             if canon is not s:
@@ -176,13 +201,21 @@ def _check_choice(ex, part, answer):
         return Feedback(False, f"The answer is {article(type(answer).__name__)}; "
                         f"{part.listing()} (a string)", ex.id, part.name, "invalid")
     key = _norm_choice(answer)
-    # "wt.ChartError", "whittaker_teach.ChartError": the name after the module
-    last = _norm_choice(answer.strip().rsplit(".", 1)[-1]) if "." in answer.strip() else key
+    # "wt.ChartError", "whittaker_teach.ChartError": the name after the module (only for
+    # a dotted name: in a sentence, the last word after a period is not the answer)
+    dotted = re.fullmatch(r"\s*[^\W\d][\w.]*\s*", answer) and "." in answer
+    last = _norm_choice(answer.strip().rsplit(".", 1)[-1]) if dotted else key
     for name, (aliases, message) in part.choices.items():
         if {key, last} & {_norm_choice(a) for a in (name, *aliases)}:
             if name == part.answer_key:
                 return Feedback(True, message or part.success, ex.id, part.name)
             return Feedback(False, message, ex.id, part.name)
+    named = [name for name, (aliases, _) in part.choices.items()
+             if any(_norm_choice(a) and _norm_choice(a) in key for a in (name, *aliases))]
+    if named:                     # "RK45 rather than DOP853", "not DOP853": read as a whole
+        return Feedback(False, f"Your answer names {' and '.join(repr(n) for n in named)} "
+                        "among other words: give one option alone; "
+                        f"{part.listing()} (a string)", ex.id, part.name, "invalid")
     return Feedback(False, f"{answer[:40]!r} is not one of the options: {part.listing()} "
                     "(a string)", ex.id, part.name, "invalid")
 
