@@ -21,7 +21,7 @@ import nbformat
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from tests.integration.kepler_answers import EX, RIGHT, WRONG  # noqa: E402
-from whittaker_teach.exercises import grade as grading  # noqa: E402
+from whittaker_teach.grading import run as grading  # noqa: E402
 
 SYMPY = ("import sympy as sp\nm, mu, p, r = sp.symbols('m mu p r', positive=True)\n"
          "h, e, rp = sp.symbols('h e rprime')\n"

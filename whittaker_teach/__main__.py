@@ -16,10 +16,12 @@ Commands::
     bench numerics [--quick] [--json FILE] [--csv FILE] [--plot FILE] [--quiet]
                                   speed against error: the full, reduced and exact
                                   models of the sledge (whittaker_teach.numerics)
-    grade SUBMISSION.ipynb ... --out grades.csv [--feedback DIR]
+    grade --exercise ID --roster ROSTER.csv SUBMISSIONS... --out grades.csv
+          [--canvas GRADEBOOK.csv] [--moodle WORKSHEET.csv] [--feedback DIR]
                                   run the students' exercise notebooks, each in a
-                                  fresh confined kernel, and write their grades
-                                  (whittaker_teach.exercises.grade)
+                                  fresh confined kernel, match each to one student
+                                  of the roster, and write their grades, also into
+                                  the LMS's own files (whittaker_teach.grading)
 """
 
 import argparse
@@ -68,7 +70,7 @@ def _bench(args):
 
 
 def _grade(args):
-    from .exercises.grade import main
+    from .grading.run import main
     return main(args)
 
 
@@ -104,14 +106,30 @@ def main(argv=None):
     b.add_argument("--quiet", action="store_true", help="numerics: no progress bar")
     b.set_defaults(func=_bench)
     g = sub.add_parser("grade", help="grade the students' exercise notebooks into a CSV")
-    g.add_argument("submissions", nargs="*", help="the submitted .ipynb files (after "
-                   "'--', or as existing files, names may begin with '-')")
+    g.add_argument("submissions", nargs="*", help="the submitted .ipynb files, or the "
+                   "folder an LMS download was extracted into (after '--', or as existing "
+                   "files, names may begin with '-')")
+    g.add_argument("--exercise", metavar="ID", help="the assignment's exercise: every "
+                   "notebook is graded as it, or refused if it is of another exercise")
+    g.add_argument("--roster", metavar="CSV", help="the students: Canvas's gradebook export, "
+                   "Moodle's grading worksheet, or a CSV with id and name columns (default: "
+                   "the --canvas or --moodle file)")
+    g.add_argument("--report", metavar="FILE", help="the identity report (default: "
+                   "<out>-identities.csv): who each notebook was graded under, and why not")
     g.add_argument("--out", required=True, help="the CSV to write: "
                    "submission,exercise,part,ok,points,max_points,message")
     g.add_argument("--gradebook", metavar="FILE", help="points per part and total, per "
                    "submission (CSV)")
-    g.add_argument("--canvas", metavar="FILE", help="Canvas's gradebook import (CSV)")
-    g.add_argument("--moodle", metavar="FILE", help="Moodle's offline grading worksheet (CSV)")
+    g.add_argument("--canvas", metavar="CSV", help="your Canvas gradebook export: written "
+                   "back, with the assignment's column filled in, to --canvas-out")
+    g.add_argument("--canvas-out", metavar="CSV", help="default: <canvas>-graded.csv")
+    g.add_argument("--canvas-column", metavar="'TITLE (ID)'", help="the assignment's column "
+                   "(default: the one titled as the exercise's id or title)")
+    g.add_argument("--moodle", metavar="CSV", help="your Moodle offline grading worksheet: "
+                   "written back, Grade and Feedback comments filled in, to --moodle-out")
+    g.add_argument("--moodle-out", metavar="CSV", help="default: <moodle>-graded.csv")
+    g.add_argument("--overwrite-feedback", action="store_true", help="replace Moodle's "
+                   "feedback comments instead of appending to them")
     g.add_argument("--unsafe", action="store_true", help="run the notebooks without the "
                    "sandbox where it cannot be had (not root, no bubblewrap)")
     g.add_argument("--feedback", metavar="DIR", help="write one HTML page per submission")

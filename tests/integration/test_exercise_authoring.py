@@ -125,7 +125,7 @@ def test_the_solution_notebook_checks_right_and_grade_gives_full_marks(answers, 
             and c.source.startswith("check(") for o in c.outputs
             if o.output_type == "execute_result"]
     assert len(outs) == 3 and all("Correct" in o for o in outs), outs
-    from whittaker_teach.exercises import grade as grading
+    from whittaker_teach.grading import run as grading
     sub = tmp_path / "submissions"
     sub.mkdir()
     shutil.copy2(sol, sub / "student.ipynb")

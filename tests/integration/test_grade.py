@@ -21,7 +21,7 @@ import nbformat
 import pytest
 
 import whittaker_teach
-from whittaker_teach.exercises import grade as grading
+from whittaker_teach.grading import run as grading
 
 from .kepler_answers import EX
 from .kepler_answers import RIGHT as TYPED_RIGHT
@@ -233,11 +233,13 @@ def test_file_names_beginning_with_a_dash(tmp_path, package_path):
 def test_without_the_sandbox_grade_refuses_unless_unsafe(tmp_path, monkeypatch, capsys):
     import argparse
 
-    from whittaker_teach.exercises import sandbox
+    from whittaker_teach.grading import sandbox
     monkeypatch.setattr(sandbox, "_AVAILABLE", ["bubblewrap is not installed"])
     with pytest.raises(grading.SandboxUnavailable, match="bubblewrap is not installed"):
         grading.grade([], str(tmp_path / "g.csv"))
-    args = argparse.Namespace(submissions=[], out=str(tmp_path / "g.csv"), feedback=None,
+    (tmp_path / "essay.ipynb").write_text("not a notebook", encoding="utf-8")
+    args = argparse.Namespace(submissions=[str(tmp_path / "essay.ipynb")],
+                              out=str(tmp_path / "g.csv"), feedback=None,
                               jobs=1, cell_timeout=5, timeout=5, memory=500, quiet=True,
                               unsafe=False, gradebook=None, canvas=None, moodle=None)
     assert grading.main(args) == 2
@@ -252,7 +254,7 @@ def test_every_solution_notebook_gets_full_marks_in_the_sandbox(tmp_path):
     """The exercises' own solutions, graded as students' notebooks: every part right (so each
     exercise's solvers flag allows what its student notebook needs; a solution that confirms
     a hand derivation with the library where solvers are not allowed gets a note row)."""
-    from whittaker_teach.exercises import sandbox
+    from whittaker_teach.grading import sandbox
     if sandbox.available():
         pytest.skip(sandbox.available())
     root = Path(__file__).resolve().parents[2] / "exercises" / "solutions"
@@ -272,7 +274,7 @@ def test_an_interrupted_batch_keeps_its_rows_and_leaves_nothing_running(tmp_path
     import signal
     import time
 
-    from whittaker_teach.exercises import sandbox
+    from whittaker_teach.grading import sandbox
     if sandbox.available():
         pytest.skip(sandbox.available())
     (tmp_path / "essay.ipynb").write_text("not a notebook", encoding="utf-8")
@@ -317,3 +319,55 @@ def test_an_interrupted_batch_keeps_its_rows_and_leaves_nothing_running(tmp_path
                 out.append((pid, "(gone)"))
         return out
     assert left() == [], described(left())
+
+
+def test_an_assignment_graded_with_a_roster_into_moodle_and_canvas(tmp_path, package_path):
+    """`grade --exercise --roster` on Moodle's folders layout, in the sandbox: the honest
+    student is graded under her participant number and her grade is written into the
+    worksheet, scaled to its Maximum Grade; a notebook of another exercise, a second
+    notebook of one student and a folder of no one on the roster are reported, never
+    graded under anyone; the command exits 1 to say so."""
+    from whittaker_teach.grading import sandbox
+    if sandbox.available():
+        pytest.skip(sandbox.available())
+    subs = tmp_path / "subs"
+    start = "from whittaker_teach.exercises import check"
+
+    def hand_in(folder, name, cells, exercise=EX):
+        (subs / folder).mkdir(parents=True, exist_ok=True)
+        _notebook(subs / folder / name, cells, exercise)
+    hand_in("Jane Doe_123456_assignsubmission_file", "kepler.ipynb", [start, *_checks(RIGHT)])
+    hand_in("Vic Tim_111111_assignsubmission_file", "easy.ipynb",
+            [start, "check('identity-1-19', None, part='x')"], exercise="identity-1-19")
+    hand_in("Eve 111111_222222_assignsubmission_file", "a.ipynb", [start, *_checks(RIGHT)])
+    hand_in("Eve 111111_222222_assignsubmission_file", "b.ipynb", [start, *_checks(WRONG)])
+    hand_in("Mallory_999_assignsubmission_file", "k.ipynb", [start, *_checks(RIGHT)])
+    (subs / "Jane Doe_123456_assignsubmission_file" / "notes.txt").write_text("x")
+    worksheet = Path(__file__).resolve().parents[1] / "fixtures" / "lms" / \
+        "moodle-worksheet.csv"
+    out = tmp_path / "g.csv"
+    proc = subprocess.run([sys.executable, "-m", "whittaker_teach", "grade", "--exercise", EX,
+                           "--moodle", str(worksheet), "--moodle-out", str(tmp_path / "m.csv"),
+                           "--out", str(out), "--quiet", str(subs)],
+                          capture_output=True, text=True, timeout=300,
+                          env={**os.environ, "PYTHONPATH": package_path})
+    assert proc.returncode == 1, proc.stderr
+    assert "2 submissions" in proc.stdout and "Moodle: 1 grades" in proc.stdout
+    report = {}
+    for r in csv.DictReader(open(tmp_path / "g-identities.csv", encoding="utf-8")):
+        report.setdefault(r["status"], []).append(r)
+    assert [r["student_id"] for r in report["graded"]] == ["123456"]
+    assert [r["student_id"] for r in report["other-exercise"]] == ["111111"]
+    assert sorted(r["submission"].rsplit("/", 1)[1] for r in report["duplicate"]) == \
+        ["a.ipynb", "b.ipynb"]
+    assert report["unknown"][0]["submission"].startswith("Mallory_999")
+    assert [r["student_id"] for r in report["no-submission"]] == ["333333"]
+    rows = {r["Identifier"]: r for r in csv.DictReader(open(tmp_path / "m.csv",
+                                                           encoding="utf-8"))}
+    assert rows["Participant 123456"]["Grade"] == "100.00"
+    assert rows["Participant 111111"]["Grade"] == "50.00"          # as downloaded
+    assert rows["Participant 222222"]["Grade"] == ""
+    graded = list(csv.DictReader(open(out, encoding="utf-8")))
+    assert {r["submission"].split("/")[0] for r in graded} == {
+        "Jane Doe_123456_assignsubmission_file", "Vic Tim_111111_assignsubmission_file"}
+    assert all(r["exercise"] == EX for r in graded)

@@ -17,8 +17,8 @@ from pathlib import Path
 import nbformat
 import pytest
 
-from whittaker_teach.exercises import grade as grading
-from whittaker_teach.exercises import sandbox
+from whittaker_teach.grading import run as grading
+from whittaker_teach.grading import sandbox
 
 from .kepler_answers import EX, RIGHT, WRONG
 

@@ -4,7 +4,7 @@ so, and the next ``grade`` in the same process starts afresh."""
 
 import subprocess
 
-from whittaker_teach.exercises import grade
+from whittaker_teach.grading import run as grade
 
 
 def test_no_run_starts_after_an_interrupt(monkeypatch):

@@ -1,8 +1,10 @@
 """What the grader writes for a lecturer: CSV cells, feedback page names, the gradebook exports."""
 import csv
 
-from whittaker_teach.exercises import gradebook
-from whittaker_teach.exercises.grade import Row, cell, page_name, summary
+from whittaker_teach.grading import exports
+from whittaker_teach.grading.roster import Student
+from whittaker_teach.grading.rows import Row, cell, summary
+from whittaker_teach.grading.run import page_name
 
 
 def test_cells_a_spreadsheet_never_reads_as_formulas():
@@ -29,24 +31,18 @@ def _rows(name, oks, points=(1, 2, 1)):
             for p, ok, pts in zip(parts, oks, points)]
 
 
-def test_gradebook_canvas_and_moodle_exports(tmp_path):
+def test_the_gradebook_export(tmp_path):
     per = [_rows("smithjohn_12345_67890_ex.ipynb", [True, True, False]),
            _rows("Jane Doe_777_assignsubmission_file_ex.ipynb", [True, False, False]),
            _rows("=evil.ipynb", [False, False, False])
            + [Row("=evil.ipynb", "ex", "", False, "failure", 0, 0)]]
-    gradebook.write_exports(per, gradebook=tmp_path / "g.csv", canvas=tmp_path / "c.csv",
-                            moodle=tmp_path / "m.csv")
+    exports.write_gradebook(tmp_path / "g.csv", per,
+                            [Student("12345", "Smith, John"), Student("777", "Jane Doe"), None])
     g = list(csv.DictReader(open(tmp_path / "g.csv", encoding="utf-8")))
     assert [r["total"] for r in g] == ["3", "1", "0"] and g[0]["max_points"] == "4"
-    assert g[0]["student"] == "12345" and g[1]["student"] == "777"
+    assert g[0]["student"] == "12345" and g[1]["student"] == "777" and g[2]["student"] == ""
+    assert g[1]["name"] == "Jane Doe"
     assert g[2]["submission"] == "'=evil.ipynb" and g[0]["ex:b"] == "2"
-    c = list(csv.reader(open(tmp_path / "c.csv", encoding="utf-8")))
-    assert c[0] == ["Student", "ID", "SIS User ID", "SIS Login ID", "Section",
-                    "ex (whittaker-teach)"]
-    assert c[1][1] == "12345" and c[1][5] == "3"
-    m = list(csv.DictReader(open(tmp_path / "m.csv", encoding="utf-8")))
-    assert m[1]["Identifier"] == "Participant 777" and m[1]["Grade"] == "1"
-    assert m[1]["Maximum Grade"] == "4" and m[1]["Full name"] == "Jane Doe"
     assert summary([r for rows in per for r in rows], 3) == \
         "3 submissions: 3 parts right, 6 parts wrong, 1 failure"
 

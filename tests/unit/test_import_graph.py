@@ -99,9 +99,51 @@ def test_graph_is_read():
 
 
 def test_no_circles_in_core_and_numerics():
-    edges = {m: e for m, e in _graph().items() if not m.startswith("whittaker_teach.exercises")}
+    edges = {m: e for m, e in _graph().items() if not m.startswith("whittaker_teach.exercises")
+             and not m.startswith("whittaker_teach.grading")}
     edges = {m: {w for w in e if w in edges} for m, e in edges.items()}
     assert _cycles(edges) == []
+
+
+def test_no_circles_anywhere_checking_and_grading_included():
+    """Issue 37, item 9: grade.py and gradebook.py imported each other; now nothing does."""
+    assert _cycles(_graph()) == []
+
+
+#: the only modules of exercises/ that name the grader: aliases of moved modules, for old
+#: scripts (exercises.sandbox is grading.sandbox; exercises.grade forwards any name but
+#: record_line to grading.run when it is asked for, without an import statement)
+GRADING_ALIASES = {"whittaker_teach.exercises.sandbox"}
+
+
+def _in(mod, package):
+    return mod == package or mod.startswith(package + ".")
+
+
+def test_checking_never_imports_the_grader():
+    edges = _graph()
+    bad = {m: sorted(w for w in e if _in(w, "whittaker_teach.grading"))
+           for m, e in edges.items() if _in(m, "whittaker_teach.exercises")
+           and m not in GRADING_ALIASES}
+    assert {m: e for m, e in bad.items() if e} == {}
+    assert edges["whittaker_teach.exercises.grade"] == {"whittaker_teach.exercises.recorder"}
+
+
+def test_the_grader_uses_checking_but_not_authoring():
+    """grading/ may call check (the package, its catalogue, the recorder); never the authoring
+    tools; its roster, exports, rows and worker import nothing outside grading/."""
+    edges = _graph()
+    allowed = {"whittaker_teach", "whittaker_teach.exercises",
+               "whittaker_teach.exercises.catalog", "whittaker_teach.exercises.recorder"}
+    for mod, out in edges.items():
+        if not _in(mod, "whittaker_teach.grading"):
+            continue
+        outside = {w for w in out if not _in(w, "whittaker_teach.grading")}
+        assert outside <= allowed, (mod, sorted(outside - allowed))
+        if mod.rsplit(".", 1)[-1] in ("roster", "exports", "rows", "worker", "grading"):
+            assert outside == set(), (mod, sorted(outside))
+    assert edges["whittaker_teach.grading.worker"] == set()
+    assert edges["whittaker_teach.grading"] == set()
 
 
 def test_core_never_imports_numerics():
