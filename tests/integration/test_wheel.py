@@ -1,5 +1,6 @@
 """The package as pip installs it: the wheel carries the exercises' answer data, so
 that a student who installs it checks an exercise from any folder (issue 32)."""
+import shutil
 import subprocess
 import sys
 import sysconfig
@@ -24,11 +25,22 @@ SCRIPT = textwrap.dedent("""
 """)
 
 
+pytestmark = pytest.mark.xdist_group("wheel")     # one build, in one worker
+
+
 @pytest.fixture(scope="module")
 def wheel(tmp_path_factory):
+    """The wheel, built from a copy of the sources (never in the checkout's build/, where
+    another build may be under way)."""
     out = tmp_path_factory.mktemp("wheel")
+    src = out / "src"
+    src.mkdir()
+    for name in ("pyproject.toml", "README.md"):
+        shutil.copy2(ROOT / name, src / name)
+    shutil.copytree(ROOT / "whittaker_teach", src / "whittaker_teach",
+                    ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
     subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation",
-                    "-q", "-w", str(out), str(ROOT)], check=True, cwd=out)
+                    "-q", "-w", str(out), str(src)], check=True, cwd=out)
     (w,) = out.glob("whittaker_teach-*.whl")
     return w
 

@@ -479,14 +479,18 @@ def _dos_objects():
 
 @pytest.mark.parametrize("key", sorted(CASES), ids="/".join)
 def test_denial_of_service_answers_are_answered_quickly(key):
-    """Every check returns within 2 s, whatever the answer, and prints no huge number."""
+    """Every check costs at most 2 s, whatever the answer, and prints no huge number.
+
+    The cost is this process's CPU time: on a loaded machine the wall time also counts
+    the other processes' turns, which is not the checker's work (make bench-style
+    figures of wall time belong in a benchmark, not in a test)."""
     import time
     ex, part = key
     check(ex, None, part=part)                     # the exercise is derived once, first
     for answer in DOS + _dos_objects():
-        start = time.monotonic()
+        start = time.process_time()
         f = check(ex, answer, part=part)
-        took = time.monotonic() - start
+        took = time.process_time() - start
         assert took < 2.0, (str(answer)[:60], took)
         assert isinstance(f, Feedback) and not f.ok and len(f.message) < 1000
         assert not any(len(w) > 60 for w in f.message.split()), f.message

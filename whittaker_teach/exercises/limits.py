@@ -9,7 +9,9 @@ Anything a student types is untrusted, so every check is bounded twice:
   expressions of more than ``MAX_NODES`` nodes); the numerical evaluation
   refuses intermediate values beyond ``1e300`` (:mod:`.compare`);
 * the checking itself runs under :func:`time_budget`: on Linux, in the main
-  thread, a ``SIGALRM`` timer interrupts it after ``seconds`` and
+  thread, a ``SIGPROF`` timer interrupts it after ``seconds`` of this process's
+  CPU time (not wall time: a loaded machine does not make a right answer "too
+  expensive", so stored notebook outputs do not depend on the load) and
   :class:`TooExpensive` is raised.  Where no timer can be set (another
   thread, Pyodide) the size limits alone bound the work.
 
@@ -71,7 +73,8 @@ def _timer_available():
 
 @contextlib.contextmanager
 def time_budget(seconds=CHECK_SECONDS):
-    """Raise :class:`TooExpensive` in the body after ``seconds`` (main thread, POSIX).
+    """Raise :class:`TooExpensive` in the body after ``seconds`` of CPU time (main thread,
+    POSIX).
 
     Nested budgets keep the outer deadline (an inner one is a no-op).
     """
@@ -80,7 +83,7 @@ def time_budget(seconds=CHECK_SECONDS):
         yield
         return
     try:
-        remaining, _ = signal.getitimer(signal.ITIMER_REAL)
+        remaining, _ = signal.getitimer(signal.ITIMER_PROF)
     except (OSError, ValueError, AttributeError):   # no timer here (Pyodide)
         remaining = None
     if remaining is None or remaining:   # no timer, or an outer budget runs: keep it
@@ -89,17 +92,17 @@ def time_budget(seconds=CHECK_SECONDS):
 
     def expire(signum, frame):
         # again soon, in case some code on the way catches it and carries on
-        signal.setitimer(signal.ITIMER_REAL, 0.1)
+        signal.setitimer(signal.ITIMER_PROF, 0.1)
         raise TooExpensive()
 
     try:
-        previous = signal.signal(signal.SIGALRM, expire)
-        signal.setitimer(signal.ITIMER_REAL, seconds)
+        previous = signal.signal(signal.SIGPROF, expire)
+        signal.setitimer(signal.ITIMER_PROF, seconds)
     except (OSError, ValueError, AttributeError):  # pragma: no cover - no timer after all
         yield
         return
     try:
         yield
     finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous)
+        signal.setitimer(signal.ITIMER_PROF, 0)
+        signal.signal(signal.SIGPROF, previous)

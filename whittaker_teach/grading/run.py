@@ -115,7 +115,7 @@ def _json_depth(text, limit):
 
 
 def read_submission(path):
-    """(notebook, None) or (None, why it is not a notebook)."""
+    """(what the grader reads of it, None) or (None, why it is not a gradable notebook)."""
     nb, _, why = _read(path)
     return nb, why
 
@@ -156,36 +156,97 @@ def _read_checked(path):
         return None, None, "not a notebook (not JSON: download the .ipynb file from Jupyter)"
     if _json_depth(text, MAX_JSON_DEPTH):
         return None, None, f"not a notebook (JSON nested more than {MAX_JSON_DEPTH} levels deep)"
+    summary, why = _validated(raw)
+    if summary is None:
+        return None, None, why
+    return summary, raw, None
+
+
+#: what reading and validating one notebook may cost, in a process of its own
+VALIDATE_MEMORY_MB = 1024
+VALIDATE_SECONDS = 20
+
+# Run in a child process under those limits (the grader itself never parses a
+# submission): the JSON is parsed and validated by nbformat, and only what the
+# grader needs comes back, small: the exercise the metadata claims and the
+# exercises the code cells' check(...) calls name, in order.
+_VALIDATE = r"""
+import json, re, sys
+text = sys.stdin.buffer.read().decode("utf-8")
+def out(**kw):
+    sys.stdout.write(json.dumps(kw)); sys.exit(0)
+try:
+    data = json.loads(text)
+except json.JSONDecodeError as exc:
+    where = f"line {exc.lineno}, column {exc.colno}"
+    if exc.pos >= len(text.rstrip()) - 1:
+        out(why=f"not a notebook: the JSON is truncated (it ends at {where})")
+    out(why=f"not a notebook: the JSON is damaged at {where}")
+if not isinstance(data, dict) or data.get("nbformat") != 4:
+    out(why="not a notebook in format 4 (save it from a current Jupyter)")
+import nbformat
+try:
+    nb = nbformat.from_dict(data)
+    nbformat.validate(nb)
+except Exception as exc:
+    out(why=f"not a valid notebook ({type(exc).__name__})")
+meta = nb.metadata.get("whittaker_teach", {})
+claimed = meta.get("exercise") if isinstance(meta, dict) else None
+named = []
+for c in nb.cells:
+    src = "".join(c.source) if isinstance(c.source, list) else c.source
+    if c.cell_type == "code" and isinstance(src, str):
+        for m in re.findall(r"check\(\s*[\x22\x27]([\w-]+)[\x22\x27]", src[:100_000]):
+            if m not in named and len(named) < 50:
+                named.append(m[:100])
+out(claimed=claimed[:100] if isinstance(claimed, str) else None, named=named)
+"""
+
+
+class _Summary:
+    """What the grader knows of a submitted notebook: the exercise its metadata claims
+    and the exercises its check(...) calls name, in order (read by :func:`_validated`)."""
+
+    def __init__(self, claimed, named):
+        self.claimed, self.named = claimed, list(named)
+
+
+def _limit_validation():               # in the child, before exec
+    import resource
+    limit = VALIDATE_MEMORY_MB * 2**20
+    resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+    resource.setrlimit(resource.RLIMIT_CPU, (VALIDATE_SECONDS, VALIDATE_SECONDS + 1))
+
+
+def _validated(raw):
+    """(_Summary, None) or (None, why): the notebook parsed and validated in a child
+    process with at most VALIDATE_MEMORY_MB of memory and VALIDATE_SECONDS of CPU."""
     try:
-        data = json.loads(text)
-    except json.JSONDecodeError as exc:
-        where = f"line {exc.lineno}, column {exc.colno}"
-        if exc.pos >= len(text.rstrip()) - 1:
-            return None, None, f"not a notebook: the JSON is truncated (it ends at {where})"
-        return None, None, f"not a notebook: the JSON is damaged at {where}"
-    import nbformat
+        proc = subprocess.run([sys.executable, "-I", "-c", _VALIDATE], input=raw,
+                              capture_output=True, timeout=4 * VALIDATE_SECONDS,
+                              preexec_fn=_limit_validation if os.name == "posix" else None)
+    except subprocess.TimeoutExpired:
+        return None, (f"not gradable: reading the notebook took more than "
+                      f"{4 * VALIDATE_SECONDS} s "
+                      "(it is far larger or more deeply built than a notebook should be)")
     try:
-        if not isinstance(data, dict) or data.get("nbformat") != 4:
-            return None, None, "not a notebook in format 4 (save it from a current Jupyter)"
-        nb = nbformat.reads(text, as_version=4)
-        nbformat.validate(nb)
-    except Exception as exc:  # noqa: BLE001 - nbformat raises many kinds
-        return None, None, f"not a valid notebook ({type(exc).__name__})"
-    return nb, raw, None
+        result = json.loads(proc.stdout[:100_000].decode("utf-8")) if proc.returncode == 0 \
+            else None
+    except (UnicodeDecodeError, json.JSONDecodeError):
+        result = None
+    if not isinstance(result, dict):
+        return None, ("not gradable: reading the notebook went beyond the grader's limits "
+                      f"({VALIDATE_MEMORY_MB} MB, {VALIDATE_SECONDS} s)")
+    if result.get("why"):
+        return None, str(result["why"])[:300]
+    return _Summary(result.get("claimed"), result.get("named") or []), None
 
 
 def exercise_of(nb):
-    """The exercise id of a student notebook (metadata, else its check cells)."""
-    import re
-    meta = nb.metadata.get("whittaker_teach", {})
-    if isinstance(meta, dict) and isinstance(meta.get("exercise"), str):
-        return meta["exercise"]
-    for c in nb.cells:
-        if c.cell_type == "code" and isinstance(c.source, str):
-            m = re.search(r"check\(\s*[\"']([\w-]+)[\"']", c.source[:100_000])
-            if m:
-                return m.group(1)
-    return None
+    """The exercise id of a student notebook (metadata, else its first check(...))."""
+    if nb.claimed:
+        return nb.claimed
+    return nb.named[0] if nb.named else None
 
 
 # ---------------------------------------------------------------- running one submission
@@ -501,15 +562,7 @@ def score(name, exercise, result, failure, log, settings=None):
 
 def _named_exercises(nb):
     """(the exercise of the notebook's metadata or None, the exercises its check(...) name)."""
-    import re
-    meta = nb.metadata.get("whittaker_teach", {})
-    claimed = meta.get("exercise") if isinstance(meta, dict) and \
-        isinstance(meta.get("exercise"), str) else None
-    named = set()
-    for c in nb.cells:
-        if c.cell_type == "code" and isinstance(c.source, str):
-            named.update(re.findall(r"check\(\s*[\"']([\w-]+)[\"']", c.source[:100_000]))
-    return claimed, named
+    return nb.claimed, set(nb.named)
 
 
 def prepare(path, name=None, assignment=None):
