@@ -116,6 +116,55 @@ def test_routh_kepler_and_refusals():
         st.routh(wt.examples.sledge(), "theta")
 
 
+def test_family_dimension_is_computed_not_counted():
+    """Lyapunov-Malkin needs a manifold of equilibria: classify computes its dimension."""
+    no_spring = _sleigh(0)
+    lin = st.linearize(st.steady_motion(no_spring, {"theta": 0}, {"x": v_pos}))
+    c = st.classify(lin)                 # the motion has one symbol (v), the family two
+    assert (c.family, c.verdict) == (2, "stable, asymptotically relative to the family")
+    assert c.family_how.startswith("computed")
+    assert st.classify(lin, family=2).family_how.startswith("given, and checked")
+    assert st.family_dimension(st.steady_motion(_sleigh(), {"theta": 0}, {"x": v_pos})).dimension == 1
+    # the sledge at rest: no symbol in the motion, but any speed is steady
+    rest = st.linearize(st.steady_motion(wt.examples.sledge(), {"theta": 0}, {"x": 0}))
+    assert st.classify(rest).family == 1
+
+
+def test_family_given_by_hand_is_refused_when_wrong():
+    lin = st.linearize(st.steady_motion(_sleigh(0), {"theta": 0}, {"x": v_pos}))
+    with pytest.raises(wt.ModelError, match="manifold of dimension 2"):
+        st.classify(lin, family=1)
+    lin_k = st.linearize(st.steady_motion(_sleigh(), {"theta": 0}, {"x": v_pos}))
+    with pytest.raises(wt.ModelError, match="manifold of dimension 1"):
+        st.classify(lin_k, family=2)
+
+
+def test_disk_family_of_steady_circles_has_dimension_two():
+    w = sp.Symbol("omega", positive=True)
+    lin = st.linearize(st.steady_motion(st.tilting_disk(), {"phi": 0}, {"psi": 0, "theta": w}))
+    fd = st.family_dimension(lin.steady)
+    assert (fd.dimension, fd.unknowns, fd.rank_at_point) == (2, 3, 1)
+    assert st.classify(lin).family == 2
+
+
+def test_family_undecided_where_the_rank_drops():
+    """A quartic spring: the rank of the equilibrium conditions drops at theta = 0,
+    so the dimension is not decided; a hand-supplied family is used, up to the bound."""
+    s = wt.examples.sledge()
+    k = sp.Symbol("k", positive=True)
+    th = s.coordinates[1]
+    quartic = wt.ChaplyginSystem(s.lagrangian.subs(k, 0) - th**4, s.coordinates,
+                                 dependent=s.constraints, name="quartic")
+    lin = st.linearize(st.steady_motion(quartic, {"theta": 0}, {"x": v_pos}))
+    fd = st.family_dimension(lin.steady)
+    assert (fd.dimension, fd.bound, fd.rank_at_point, fd.rank_generic) == (None, 2, 0, 1)
+    c = st.classify(lin)
+    assert c.family == 1 and "not checked" in c.family_how
+    assert "not checked" in st.classify(lin, family=2).family_how
+    with pytest.raises(wt.ModelError, match="at most a manifold of dimension 2"):
+        st.classify(lin, family=3)
+
+
 @pytest.mark.parametrize("call, match", [
     (lambda: st.steady_motion("sledge", {"theta": 0}, {"x": 0}), "ChaplyginSystem"),
     (lambda: st.steady_motion(wt.examples.sledge(), {"theta": 0}, {}), "no value or velocity"),

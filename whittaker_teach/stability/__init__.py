@@ -10,6 +10,9 @@ motions" of the book).
 ``linearize_reduced``       the linearisation of (1.26) about its path
 ``compare``                 the two agree: lambda = v_eps mu, plus one lambda = 0
 ``classify``                Lyapunov's first method, saying when it decides nothing
+``family_dimension``        the dimension of the manifold of steady motions through
+                            a point (rank of the equilibrium conditions), when
+                            it can be decided
 ``routh``                   Routh's method for a cyclic coordinate with a conserved
                             momentum: the Routhian and the effective potential
 ``conserved``               is an expression an integral of (1.4)? (exact or 40 digits)
@@ -27,7 +30,8 @@ Only SymPy and mpmath are used; nothing here imports the numerics.
 'unstable'
 """
 
-from .classify import Classification, classify, hurwitz_conditions
+from .classify import (Classification, FamilyDimension, classify, family_dimension,
+                       hurwitz_conditions)
 from .linear import LAMBDA, MU, Linearization, compare, linearize, linearize_reduced
 from .routh import Routhian, routh
 from .models import tilting_disk
@@ -36,5 +40,6 @@ from .steady import (SteadyMotion, conserved, cyclic_coordinates, find_steady_mo
 
 __all__ = ["SteadyMotion", "steady_motion", "find_steady_motions", "cyclic_coordinates",
            "Linearization", "linearize", "linearize_reduced", "compare", "LAMBDA", "MU",
-           "Classification", "classify", "hurwitz_conditions", "Routhian", "routh",
+           "Classification", "classify", "hurwitz_conditions", "FamilyDimension",
+           "family_dimension", "Routhian", "routh",
            "conserved", "tilting_disk"]

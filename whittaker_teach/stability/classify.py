@@ -11,7 +11,16 @@
   the point and A of rank n - z: **stable, and asymptotically stable relative to
   the family** (a nearby motion tends to a nearby steady motion; the theorem of
   Lyapunov and Malkin on a manifold of equilibria, used for non-holonomic systems
-  by Neimark and Fufaev, 1972);
+  by Neimark and Fufaev, 1972).  Its hypothesis is a *manifold* of equilibria of
+  dimension z through the point, not a count of zero eigenvalues: the dimension is
+  computed by :func:`family_dimension` (the steady motions through the point are
+  the zeros of the equilibrium conditions; where the rank of their Jacobian is
+  constant near the point they form a manifold of dimension "unknowns - rank").
+  A ``family`` given by hand is checked against it, and refused when it differs;
+  where the rank is not constant, the dimension is not decided, and the
+  ``family`` (given, or the number of the motion's own symbols) is used as
+  stated, at most the bound "unknowns - rank at the point", and the
+  ``family_how`` of the result says so;
 * roots on the imaginary axis and none to the right (a centre of the
   linearisation, or more zeros than the family explains): **critical**: the
   linearisation decides nothing; a Lyapunov function (the energy, other
@@ -27,19 +36,25 @@
 >>> c = classify(linearize(steady_motion(wt.examples.offset_sleigh(), {"theta": 0}, {"x": v})))
 >>> c.verdict
 'stable, asymptotically relative to the family'
+>>> c.family, c.family_how
+(1, 'computed: 2 unknowns, rank 1 at the point and near it')
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
+import random
+
 import mpmath
 import sympy as sp
 
 from ..errors import ModelError, ModelTypeError
 from .linear import Linearization
+from .steady import SteadyMotion, _accelerations_plain, _sample_value
 
-__all__ = ["Classification", "classify", "hurwitz_conditions"]
+__all__ = ["Classification", "classify", "hurwitz_conditions", "FamilyDimension",
+           "family_dimension"]
 
 UNSTABLE = "unstable"
 ASYMPTOTIC = "asymptotically stable"
@@ -52,8 +67,10 @@ UNDECIDED = "undecided: depends on the parameters"
 class Classification:
     """``verdict`` (one of the five strings of the module), ``reason`` (a sentence),
     ``zeros`` (how many zero eigenvalues), ``family`` (the family's dimension),
-    ``q`` (p(lambda) / lambda^zeros) and ``conditions`` (Hurwitz: all > 0 for every
-    root of q to have a negative real part)."""
+    ``q`` (p(lambda) / lambda^zeros), ``conditions`` (Hurwitz: all > 0 for every
+    root of q to have a negative real part) and ``family_how`` (where ``family``
+    comes from: computed by :func:`family_dimension`, or given and checked, or
+    used unchecked)."""
 
     verdict: str
     reason: str
@@ -61,6 +78,7 @@ class Classification:
     family: int
     q: sp.Expr
     conditions: tuple
+    family_how: str = ""
 
     @property
     def decided(self):
@@ -69,6 +87,131 @@ class Classification:
 
     def __str__(self):
         return f"{self.verdict}: {self.reason}"
+
+
+@dataclass(frozen=True)
+class FamilyDimension:
+    """The outcome of :func:`family_dimension`: ``dimension`` (None when not decided),
+    ``bound`` (an upper bound, always valid), ``unknowns`` and the two ranks of the
+    Jacobian of the equilibrium conditions, at the point and generic (near it)."""
+
+    dimension: int | None
+    bound: int
+    unknowns: int
+    rank_at_point: int
+    rank_generic: int
+
+    def __str__(self):
+        if self.dimension is not None:
+            return (f"{self.unknowns} unknowns, rank {self.rank_at_point} at the point and "
+                    "near it")
+        return (f"not decided: rank {self.rank_at_point} at the point, {self.rank_generic} "
+                f"near it; at most {self.bound}")
+
+
+_RANK_DPS = 50
+_RANK_TOL = mpmath.mpf(10) ** -30
+
+
+def _numeric_rank(M, values):
+    """The rank of the matrix function M at ``values`` (mpmath, 50 digits,
+    singular values below 1e-30 of the largest counted as 0); None if it cannot be
+    evaluated there."""
+    with mpmath.workdps(_RANK_DPS):
+        try:
+            rows = M(*[mpmath.mpf(v) for v in values])
+            Mm = mpmath.matrix(rows)
+        except (ZeroDivisionError, ValueError, TypeError, OverflowError):
+            return None
+        if Mm.rows == 0 or Mm.cols == 0:
+            return 0
+        entries = [Mm[i, j] for i in range(Mm.rows) for j in range(Mm.cols)]
+        if any(not mpmath.isfinite(e) for e in entries):
+            return None
+        if any(isinstance(e, mpmath.mpc) and abs(e.imag) > _RANK_TOL for e in entries):
+            return None
+        Mm = mpmath.matrix([[mpmath.re(Mm[i, j]) for j in range(Mm.cols)] for i in range(Mm.rows)])
+        sv = mpmath.svd_r(Mm, compute_uv=False)
+        top = max([abs(x) for x in sv] + [mpmath.mpf(1)])
+        return sum(1 for x in sv if abs(x) > _RANK_TOL * top)
+
+
+def family_dimension(steady, at=None, samples=3, seed=1983):
+    """The dimension of the family of steady motions through ``steady``, as a
+    manifold of equilibria of the linearised state (shape coordinates, velocities).
+
+    The equilibria are the zeros of g(p) = [1.4a] with the shape velocities 0, as
+    functions of the unknowns p = (shape coordinates, moving velocities).  The
+    tangent space of a manifold of zeros lies in the kernel of the Jacobian Dg at
+    the point, so "unknowns - rank at the point" is an upper bound (``bound``).
+    When the rank at the point equals the generic rank (the largest, attained
+    near the point), the rank is constant near it and by the constant-rank theorem
+    the zeros near the point form a manifold of exactly that dimension
+    (``dimension``); otherwise ``dimension`` is None (a bifurcation point, or a
+    degenerate one: the Jacobian cannot tell).  Ranks are computed at 50 digits at
+    ``samples`` random values of the parameters (and of the unknowns, for the
+    generic rank); ``at`` fixes values of symbols first.
+
+    >>> import sympy as sp
+    >>> import whittaker_teach as wt
+    >>> from whittaker_teach.stability import steady_motion
+    >>> v = sp.Symbol("v", positive=True)
+    >>> sleigh = wt.examples.offset_sleigh()                     # with the spring
+    >>> family_dimension(steady_motion(sleigh, {"theta": 0}, {"x": v})).dimension
+    1
+    >>> no_spring = wt.ChaplyginSystem(sleigh.lagrangian.subs(sp.Symbol("k", positive=True), 0),
+    ...                                sleigh.coordinates, dependent=sleigh.constraints)
+    >>> family_dimension(steady_motion(no_spring, {"theta": 0}, {"x": v})).dimension
+    2
+    """
+    if not isinstance(steady, SteadyMotion):
+        raise ModelTypeError(f"expected a SteadyMotion, got {type(steady).__name__}")
+    if at is not None and not isinstance(at, dict):
+        raise ModelTypeError("at must be a dict {symbol: value}")
+    system = steady.system
+    Q, V, acc = _accelerations_plain(system)
+    shape, moving = steady.shape, steady.moving
+    still = {V[q]: sp.S.Zero for q in shape}
+    g = sp.Matrix([acc[q].xreplace(still) for q in system.independent_coordinates])
+    p = [Q[q] for q in shape] + [V[q] for q in moving]
+    n = len(p)
+    if n == 0:
+        return FamilyDimension(0, 0, 0, 0, 0)
+    Dg = g.jacobian(p)
+    if at:
+        Dg = Dg.subs(at)
+    params = sorted(Dg.free_symbols - set(p), key=str)
+    where = [steady.values[q] for q in shape] + [steady.velocities[q] for q in moving]
+    where = [sp.sympify(w).subs(at) if at else sp.sympify(w) for w in where]
+    extra = sorted(set().union(*(w.free_symbols for w in where)) - set(params), key=str)
+    args = list(p) + params + extra
+    M = sp.lambdify(args, Dg.tolist(), modules="mpmath")
+    atpoint = sp.lambdify(params + extra, where, modules="mpmath")
+    rng = random.Random(seed)
+    r0 = rg = None
+    for _ in range(4 * samples):
+        vals = [_sample_value(s, rng) for s in params + extra]
+        with mpmath.workdps(_RANK_DPS):
+            try:
+                pt = [mpmath.mpf(x) if not isinstance(x, mpmath.mpc) else x
+                      for x in atpoint(*vals)]
+            except (ZeroDivisionError, ValueError, TypeError, OverflowError):
+                continue
+        if any(isinstance(x, mpmath.mpc) for x in pt):
+            continue
+        ra = _numeric_rank(M, pt + vals)
+        rgen = _numeric_rank(M, [_sample_value(s, rng) for s in p] + vals)
+        if ra is not None:
+            r0 = ra if r0 is None else max(r0, ra)
+        if rgen is not None:
+            rg = rgen if rg is None else max(rg, rgen)
+        samples -= 1
+        if samples <= 0 and r0 is not None and rg is not None:
+            break
+    if r0 is None or rg is None:
+        return FamilyDimension(None, n, n, -1 if r0 is None else r0, -1 if rg is None else rg)
+    rg = max(rg, r0)
+    return FamilyDimension(n - r0 if r0 == rg else None, n - r0, n, r0, rg)
 
 
 def hurwitz_conditions(q, lam):
@@ -107,8 +250,14 @@ def _sign(e, at):
 def classify(lin, family=None, at=None):
     """Classify the steady motion of ``lin`` (a :class:`Linearization`) by its
     eigenvalues.  ``family``: the dimension of the family of steady motions through
-    it (default: the number of the motion's own symbols, ``lin.steady.family``);
-    ``at``: values for symbols whose signs the parameters' assumptions leave open.
+    it.  By default it is computed (:func:`family_dimension`); where that cannot
+    decide (the rank of the equilibrium conditions not constant near the point),
+    the number of the motion's own symbols, ``lin.steady.family``, is used and
+    ``family_how`` says it is unchecked.  A ``family`` given by hand is checked the
+    same way and refused (ModelError) when it differs from the computed dimension,
+    or exceeds the bound when there is none.  For a reduced linearisation (1.26)
+    nothing is computed: ``family`` is used as given.  ``at``: values for symbols
+    whose signs the parameters' assumptions leave open.
 
     >>> import whittaker_teach as wt
     >>> from whittaker_teach.stability import steady_motion, linearize
@@ -117,12 +266,32 @@ def classify(lin, family=None, at=None):
     """
     if not isinstance(lin, Linearization):
         raise ModelTypeError(f"expected a Linearization, got {type(lin).__name__}")
-    if family is None:
-        family = len(lin.steady.family)
-    if not isinstance(family, int) or family < 0:
+    if family is not None and (not isinstance(family, int) or isinstance(family, bool)
+                               or family < 0):
         raise ModelError(f"family must be a dimension (an integer >= 0), got {family!r}")
     if at is not None and not isinstance(at, dict):
         raise ModelTypeError("at must be a dict {symbol: value}")
+    if lin.rate is not None:                        # reduced (1.26): not computed
+        how = "given, not checked (reduced linearisation)" if family is not None else \
+            "the motion's own symbols, not checked (reduced linearisation)"
+        if family is None:
+            family = len(lin.steady.family)
+    else:
+        fd = family_dimension(lin.steady, at=at)
+        if fd.dimension is not None:
+            if family is not None and family != fd.dimension:
+                raise ModelError(f"family={family} given, but the steady motions through this point "
+                                 f"form a manifold of dimension {fd.dimension} ({fd})")
+            how = ("given, and checked: " if family is not None else "computed: ") + str(fd)
+            family = fd.dimension
+        elif family is not None:
+            if family > fd.bound:
+                raise ModelError(f"family={family} given, but the steady motions through this "
+                                 f"point form at most a manifold of dimension {fd.bound} ({fd})")
+            how = f"given, not checked ({fd})"
+        else:
+            family = min(len(lin.steady.family), fd.bound)
+            how = f"the motion's own symbols, not checked ({fd})"
     lam = lin.symbol
     p = sp.Poly(sp.expand(lin.charpoly()), lam)
     coeffs = p.all_coeffs()[::-1]                 # constant first
@@ -142,7 +311,7 @@ def classify(lin, family=None, at=None):
     hs = [_sign(x, at) for x in conds]
 
     def result(verdict, reason):
-        return Classification(verdict, reason, z, family, sp.factor(q.as_expr()), conds)
+        return Classification(verdict, reason, z, family, sp.factor(q.as_expr()), conds, how)
 
     if any(s == -1 for s in signs):
         return result(UNSTABLE, "a coefficient of q(lambda) = p(lambda)/lambda^z is negative, "

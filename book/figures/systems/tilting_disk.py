@@ -38,7 +38,7 @@ def front(ax):
     ax.plot([0, 0], [0, 3.6], "--", color="0.45", lw=1.4)
     ang = np.linspace(np.pi / 2 - PHI, np.pi / 2, 30)
     ax.plot(3.0 * np.cos(ang), 3.0 * np.sin(ang), color="k", lw=1.4)
-    ax.text(0.28, 3.2, r"$\phi$", ha="center")
+    ax.text(0.28, 3.2, r"$\varphi$", ha="center")
     arrow(ax, (1.7, 3.4), (1.7, 2.2), color="#c0392b", lw=2.4)
     ax.text(1.85, 2.6, "$g$", color="#c0392b")
     ax.plot(*G, "o", color="k", ms=10, zorder=6)
