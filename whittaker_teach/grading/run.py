@@ -299,11 +299,16 @@ def _run(raw, settings, package=None, solvers=True, slot=0):
     """Run one notebook (its bytes): (worker result or None, grader-side failure or '', the
     check log as text)."""
     from . import sandbox
+    lease = None if settings.unsafe else sandbox.UidLease()
     top = Path(tempfile.mkdtemp(prefix="wt-grade-"))
-    os.chmod(top, 0o755)
     nb_file = top / "submission.ipynb"
     nb_file.write_bytes(raw)
-    os.chmod(nb_file, 0o644)
+    if lease is not None:
+        # private: the folder can be passed through, not listed; the notebook is readable
+        # by its sandbox's uid alone (no other local account can copy it)
+        os.chmod(top, 0o711)
+        os.chown(nb_file, lease.uid, lease.uid)
+        os.chmod(nb_file, 0o400)
     limits = sandbox.Limits(settings.memory_mb, settings.processes, settings.disk_mb)
     groups, hit = None, set()
     log_r, log_w = os.pipe()
@@ -324,7 +329,7 @@ def _run(raw, settings, package=None, solvers=True, slot=0):
         else:
             name = f"wt-grade-{os.getpid()}-{slot}-{time.monotonic_ns()}"
             groups = sandbox.Cgroups.make(name, limits)
-            cmd = sandbox.command(sandbox.UID_BASE + slot, package.path(solvers), nb_file,
+            cmd = sandbox.command(lease.uid, package.path(solvers), nb_file,
                                   limits, settings.cell_timeout, log_w, groups.procs)
             env, cwd = {"PATH": "/usr/bin:/bin"}, str(top)
         try:
@@ -382,6 +387,8 @@ def _run(raw, settings, package=None, solvers=True, slot=0):
         if log_r is not None:
             os.close(log_r)
         shutil.rmtree(top, ignore_errors=True)
+        if lease is not None:
+            lease.close()
 
 
 def _kill(proc):

@@ -53,9 +53,60 @@ from pathlib import Path
 
 __all__ = ["available", "Limits", "Cgroups", "cgroup_limits", "PackageCopy", "command",
            "environment",
-           "UID_BASE", "SCRATCH"]
+           "UID_BASE", "UID_COUNT", "UidLease", "SCRATCH"]
 
 UID_BASE = 61000
+UID_COUNT = 64
+#: where the graders of this machine lease their uids (one lock file per uid)
+LEASE_DIR = Path("/run/whittaker-teach-grade")
+
+
+class UidLease:
+    """A sandbox uid (UID_BASE to UID_BASE + UID_COUNT - 1) that no other grader on this
+    machine holds: an exclusive ``flock`` on ``LEASE_DIR/<uid>``, kept for one run, so
+    two graders running at once never share a uid (and never kill each other's
+    students).  Processes left with the uid by a grader that died are killed when
+    the lease is taken.  ``close()`` gives the uid back.
+    """
+
+    def __init__(self, lease_dir=None, kill_left=True):
+        import fcntl
+        import stat
+        d = Path(lease_dir or LEASE_DIR)
+        d.mkdir(mode=0o700, exist_ok=True)
+        st = os.lstat(d)
+        if not stat.S_ISDIR(st.st_mode) or st.st_uid != os.geteuid() or st.st_mode & 0o077:
+            raise RuntimeError(f"{d} is not a private folder of this user (mode 0700)")
+        for uid in range(UID_BASE, UID_BASE + UID_COUNT):
+            fd = os.open(d / str(uid), os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW | os.O_CLOEXEC,
+                         0o600)
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except OSError:
+                os.close(fd)
+                continue
+            self.uid, self._fd = uid, fd
+            if kill_left:
+                _kill_uid(uid)
+            return
+        raise RuntimeError(f"all {UID_COUNT} sandbox uids are held by other graders")
+
+    def close(self):
+        if self._fd is not None:
+            os.close(self._fd)
+            self._fd = None
+
+
+def _kill_uid(uid):
+    """SIGKILL every process of ``uid`` (a leased uid: no live grader uses it)."""
+    import signal
+    for d in os.listdir("/proc"):
+        if d.isdigit():
+            try:
+                if os.stat(f"/proc/{d}").st_uid == uid:
+                    os.kill(int(d), signal.SIGKILL)
+            except OSError:
+                pass
 SCRATCH = "/scratch"
 PACKAGE_ROOT = "/opt/whittaker-teach"
 SUBMISSION = "/grade/submission.ipynb"
