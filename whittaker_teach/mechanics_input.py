@@ -32,11 +32,14 @@ from __future__ import annotations
 
 import sympy as sp
 
+from . import polywalk
 from .dag import diff
 from .errors import ModelError, ModelTypeError
+from .linear import fraction_free_solve
+from .rewrite import FACTOR_LIMIT, _ops_above, factored, pythagoras
 
 __all__ = ["exact_rationals", "constraint_expressions", "solved_velocities",
-           "from_lagranges_method", "from_system"]
+           "from_lagranges_method", "from_system", "speeds_as_velocities"]
 
 
 def exact_rationals(expr, record):
@@ -98,8 +101,8 @@ def solved_velocities(constraints, velocities, t):
         if J.det() == 0:
             raise ModelError(f"the constraints cannot be solved for {names}: their matrix of "
                              "coefficients of these velocities is singular (1.1)")
-        sol = J.LUsolve(-rest)
-        return dict(zip(velocities, sol))
+        sol = _solved_linear(J, rest)
+        return {v: e.xreplace(back) for v, e in zip(velocities, sol)}
     try:
         sols = sp.solve(constraints, velocities, dict=True)
     except (NotImplementedError, ValueError, TypeError) as err:
@@ -116,6 +119,35 @@ def solved_velocities(constraints, velocities, t):
         raise ModelError(f"the constraints have {len(sols)} solutions for {names} ({shown}): "
                          "pass the branch you mean solved, as dependent={ydot: phi} (1.1)")
     return {v: sols[0][v] for v in velocities}
+
+
+def _solved_linear(J, rest):
+    """The solution x of J x + rest = 0, each entry one fraction whose denominator divides
+    det J (:func:`.linear.fraction_free_solve`): LU's pivots would divide by entries that
+    may vanish where J is regular (-sin(theta) for a matrix of determinant sin(phi)),
+    giving every solved velocity a pole there.  A fraction is shown factored, any
+    sin**2 + cos**2 in it as 1.  Where the entries are not rational functions of their
+    symbols, functions and roots, or too large for a gcd, SymPy's ``LUsolve``."""
+    velocities = sorted(set().union(*(e.atoms(sp.Derivative) for e in (*J, *rest))),
+                        key=sp.default_sort_key)
+    plain = {v: sp.Dummy() for v in velocities}
+    try:
+        parts = fraction_free_solve(J.xreplace(plain), -rest.xreplace(plain))
+    except (polywalk.NotPolynomial, polywalk.TooLarge):
+        return list(J.LUsolve(-rest))
+    except ValueError as err:               # singular as polynomials: det J == 0 missed it
+        raise ModelError("the constraints cannot be solved for the dependent velocities: "
+                         "their matrix of coefficients of these velocities is singular "
+                         "(1.1)") from err
+    back = {d: v for v, d in plain.items()}
+    out = []
+    for num, den in parts:
+        if den != 1 and not _ops_above(den, FACTOR_LIMIT):
+            den = pythagoras(factored(den))
+            if not _ops_above(num, FACTOR_LIMIT):
+                num = pythagoras(factored(num))
+        out.append((num / den).xreplace(back))
+    return out
 
 
 def _coordinate_of(item, coordinates, t):
@@ -224,11 +256,14 @@ def from_lagranges_method(cls, lm, dependent=None, name=None):
 
 
 def from_system(cls, system, dependent=None, name=None):
-    """A ChaplyginSystem from a ``sympy.physics.mechanics.System`` whose kinematic
-    equations are u = qdot: L = Lagrangian(frame, *bodies) (each body's
-    ``potential_energy`` counts), the nonholonomic constraints with u = qdot; the
-    dependent coordinates are those of ``system.u_dep`` unless ``dependent`` names them.
-    Loads and holonomic constraints are refused."""
+    """A ChaplyginSystem from a ``sympy.physics.mechanics.System``: L =
+    Lagrangian(frame, *bodies) (each body's ``potential_energy`` counts) and the
+    nonholonomic constraints, both with each speed u replaced by its expression in the
+    velocities, read from the kinematic equations solved for u (:func:`speeds_as_velocities`:
+    u_i = q_j' in any order, as joints give them and ``System.u`` reorders them once
+    some are dependent, or any invertible u = f(q, q')); the dependent coordinates are
+    those whose velocities the speeds of ``system.u_dep`` are, unless ``dependent`` names
+    them.  Loads and holonomic constraints are refused."""
     from sympy.physics.mechanics import Lagrangian, dynamicsymbols
     t = dynamicsymbols._t
     if len(system.loads) or len(getattr(system, "actuators", ())):
@@ -240,24 +275,59 @@ def from_system(cls, system, dependent=None, name=None):
                          "independent coordinates (the paper's constraints (1.1) are "
                          "nonholonomic)")
     q, u = list(system.q), list(system.u)
-    if len(system.kdes) != len(u) or len(u) != len(q):
-        raise ModelError("the System's kinematic equations must be u = qdot, one per "
-                         "coordinate (add them with system.add_kdes(u - q.diff(t)))")
-    try:
-        sol = sp.solve(list(system.kdes), u, dict=True)
-    except (NotImplementedError, ValueError) as err:
-        raise ModelError(f"the System's kinematic equations cannot be solved for u: {err}") \
-            from err
-    if len(sol) != 1 or any(sp.expand(sol[0].get(ui, ui) - qi.diff(t)) != 0
-                            for ui, qi in zip(u, q)):
-        raise ModelError("the System's kinematic equations must be u = qdot (u_i = q_i', in "
-                         "the order of q and u); other speeds are not supported")
-    u_to_qd = {ui: qi.diff(t) for ui, qi in zip(u, q)}
+    u_to_qd = speeds_as_velocities(list(system.kdes), q, u, t)
     L = Lagrangian(system.frame, *system.bodies).xreplace(u_to_qd)
     coneqs = [f.xreplace(u_to_qd) for f in system.nonholonomic_constraints]
     if dependent is None and coneqs:
-        dependent = [q[u.index(ud)] for ud in system.u_dep]
+        by_velocity = {qi.diff(t): qi for qi in q}
+        dependent = []
+        for ud in system.u_dep:
+            c = by_velocity.get(u_to_qd[ud])
+            if c is None:
+                raise ModelError(f"the dependent speed {ud} is {u_to_qd[ud]} by the kinematic "
+                                 "equations, not the velocity of one coordinate: name the "
+                                 "dependent coordinates, ChaplyginSystem.from_system(system, "
+                                 "dependent=[y]) (1.1)")
+            dependent.append(c)
         if len(dependent) != len(coneqs):
             raise ModelError("name the dependent coordinates: "
                              "ChaplyginSystem.from_system(system, dependent=[y]) (1.1)")
     return cls(L, q, dependent, nonhol_coneqs=coneqs or None, name=name)
+
+
+def speeds_as_velocities(kdes, q, u, t):
+    """{u_i: its expression in q and q'}, the kinematic equations (expressions = 0, one per
+    speed) solved for the speeds: the map is read from the equations, never from the
+    positions of u and q in their lists (``System.u`` lists the independent speeds first).
+
+    >>> from sympy.physics.mechanics import dynamicsymbols
+    >>> th, x = dynamicsymbols("theta x")
+    >>> u1, u2 = dynamicsymbols("u1 u2")
+    >>> t = dynamicsymbols._t
+    >>> speeds_as_velocities([u2 - th.diff(t), u1 - x.diff(t)], [th, x], [u1, u2], t)
+    {u1(t): Derivative(x(t), t), u2(t): Derivative(theta(t), t)}
+    """
+    if len(kdes) != len(u) or len(u) != len(q):
+        raise ModelError("the System needs one kinematic equation per speed and one speed per "
+                         f"coordinate ({len(q)} coordinates, {len(u)} speeds, {len(kdes)} "
+                         "kinematic equations; add them with system.add_kdes(u - q.diff(t)))")
+    qd = [qi.diff(t) for qi in q]
+    as_symbol = {v: sp.Dummy() for v in qd}
+    plain = [sp.sympify(f).xreplace(as_symbol) for f in kdes]
+    try:
+        sol = sp.solve(plain, u, dict=True)
+    except (NotImplementedError, ValueError) as err:
+        raise ModelError(f"the System's kinematic equations cannot be solved for u: {err}") \
+            from err
+    if len(sol) != 1 or set(sol[0]) != set(u):
+        raise ModelError("the System's kinematic equations do not give each speed u as one "
+                         "expression in the coordinates and their velocities (u = f(q, q')); "
+                         "other kinematic equations are not supported")
+    back = {d: v for v, d in as_symbol.items()}
+    out = {ui: sol[0][ui].xreplace(back) for ui in u}
+    for ui, e in out.items():
+        if e.has(*u) or not e.has(*qd):
+            raise ModelError(f"the System's kinematic equations give {ui} = {e}, not an "
+                             "expression in the velocities q': other kinematic equations "
+                             "are not supported")
+    return out

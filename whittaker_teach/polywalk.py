@@ -22,7 +22,8 @@ caller uses SymPy's own functions.
 
 import sympy as sp
 
-__all__ = ["NotPolynomial", "TooLarge", "fraction", "factor", "groups", "lowest_terms", "vanishes"]
+__all__ = ["NotPolynomial", "TooLarge", "fraction", "fractions", "factor", "groups",
+           "lowest_terms", "vanishes"]
 
 
 class NotPolynomial(Exception):
@@ -251,6 +252,46 @@ def fraction(expr, limit=None):
         raise NotPolynomial(expr)   # a root left below: ``together`` may cancel it, with
                                    # a relation (r**2 = b) that the gcd does not see
     return _signed(p, q, walk.order)
+
+
+def fractions(exprs):
+    """One walk of several expressions into one ring: ``(walk, parts)``, ``parts`` the
+    numerator and the denominator (the product of its factors) of each expression as
+    polynomials over the rationals, every power r**k (k >= q) of a root r = b**(1/q)
+    reduced; ``walk.as_expr`` turns a polynomial back into an expression.  The
+    generators (symbols, functions, roots) are treated as independent: a relation such
+    as sin**2 + cos**2 = 1 is not used.  ``NotPolynomial`` as for :func:`fraction`.
+
+    >>> x, y = sp.symbols("x y")
+    >>> walk, parts = fractions([x/(x + y), y**2])
+    >>> [(walk.as_expr(n), walk.as_expr(d)) for n, d in parts]
+    [(x, x + y), (y**2, 1)]
+    """
+    exprs = [sp.sympify(e) for e in exprs]
+    gens, roots = _all_generators(exprs)
+    split = _split_roots(roots)
+    if split:
+        exprs = [e.xreplace(split) for e in exprs]
+        gens, roots = _all_generators(exprs)
+    walk = _walker(list(gens) + list(roots), roots)
+    parts = []
+    for e in exprs:
+        num, den = walk(e)
+        q = _reduce_roots(walk.product(den), walk)
+        if not q:
+            raise NotPolynomial(e)
+        parts.append((_reduce_roots(num, walk), q))
+    return walk, parts
+
+
+def _all_generators(exprs):
+    """The generators and roots of several expressions together (first seen first)."""
+    gens, roots = {}, {}
+    for e in exprs:
+        g, r = _generators(e)
+        gens.update(g)
+        roots.update(r)
+    return gens, roots
 
 
 def vanishes(expr):

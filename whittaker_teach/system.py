@@ -46,7 +46,7 @@ import sympy as sp
 from sympy.core.function import AppliedUndef
 
 from .coordinates import T, name, sign_assumptions
-from .canonical import add, mul, negated, power
+from .canonical import add, mul, negated, power, sub
 from .dag import diff, instances, max_depth, substitute, zeroed
 from .errors import ModelError, ModelTypeError, guarded
 from .linear import lu_solve
@@ -224,10 +224,11 @@ class ChaplyginSystem:
         self._phi = {self.q[c]: self._internal(self.constraints[c.diff(self._t)],
                                                f"the constraint {_name(c)}dot = phi")
                      for c in self.dependent_coordinates}
+        self._dmemo = {}     # dag.diff's memo: shared subexpressions differentiated once
+        self._rewritten = []     # (what, q_dep, as given, rewritten free of q_dep): 1.3
+        self.parameters = self._parameters()        # (sampled by the checks of 1.3)
         self._check_chaplygin()
-        self.parameters = sorted(
-            set().union(self._L.free_symbols, *(p.free_symbols for p in self._phi.values()))
-            - set(self._all_symbols), key=str)
+        self.parameters = self._parameters()
         for p in self.parameters:
             if p.is_real is False or (p.is_real is None and p.is_complex):
                 raise ModelError(f"parameter {p} is declared complex (not real): the "
@@ -239,7 +240,11 @@ class ChaplyginSystem:
             raise ModelError(f"parameter {clash[0]} has the name of a coordinate or velocity; "
                              "rename it (the derivation uses plain symbols for q and qdot)")
         self._cache = {}
-        self._dmemo = {}     # dag.diff's memo: shared subexpressions differentiated once
+
+    def _parameters(self):
+        return sorted(set().union(self._L.free_symbols,
+                                  *(p.free_symbols for p in self._phi.values()))
+                      - set(self._all_symbols), key=str)
 
     @classmethod
     def from_lagranges_method(cls, lm, dependent=None, name=None):
@@ -317,23 +322,56 @@ class ChaplyginSystem:
         return e
 
     def _check_chaplygin(self):
+        """The Chaplygin conditions (1.3), decided on what L and the constraints are, not on
+        how they are written: an expression that contains a dependent coordinate s but
+        whose derivative in s is zero (by the checks' exact-or-numeric zero test:
+        A sin(psi)**2 + A cos(psi)**2 from ``me.Lagrangian`` of a symmetric disk) is
+        rewritten free of s (:meth:`_free_of`); one whose derivative is not zero is refused."""
         dep_q = [self.q[c] for c in self.dependent_coordinates]
         dep_qd = [self.qd[c] for c in self.dependent_coordinates]
         for s in dep_q:
             if self._L.has(s):
-                raise ModelError(f"L depends on the dependent coordinate {_readable(s)} "
-                                 "(Chaplygin condition, 1.3: L must be free of the dependent "
-                                 "coordinates q_(ε+β))")
-        for c, phi in self._phi.items():
+                L = self._free_of(self._L, s, "L")
+                if L is None:
+                    raise ModelError(f"L depends on the dependent coordinate {_readable(s)} "
+                                     "(Chaplygin condition, 1.3: L must be free of the "
+                                     "dependent coordinates q_(ε+β))")
+                self._L = L
+        for c in list(self._phi):
             for s in dep_q:
-                if phi.has(s):
-                    raise ModelError(f"the constraint for {c}dot depends on the dependent "
-                                     f"coordinate {s} (Chaplygin condition, 1.3)")
+                if self._phi[c].has(s):
+                    phi = self._free_of(self._phi[c], s, f"the constraint for {c}dot")
+                    if phi is None:
+                        raise ModelError(f"the constraint for {c}dot depends on the dependent "
+                                         f"coordinate {s} (Chaplygin condition, 1.3)")
+                    self._phi[c] = phi
             for s in dep_qd:
-                if phi.has(s):
+                if self._phi[c].has(s):
                     raise ModelError(f"the constraint for {c}dot is written with another "
                                      f"dependent velocity {s}: write each dependent velocity "
                                      "in the independent velocities only (1.1)")
+
+    def _free_of(self, expr, s, what):
+        """``expr`` rewritten without the dependent coordinate ``s`` when d expr/ds is zero
+        (``check_zero``), else None.  Only the terms that contain s are rewritten: first
+        collected on the velocities (expand, group, factor each coefficient, sin**2 + cos**2
+        as 1: ``rewrite.collected``), else with s set to a fixed value at which they are
+        finite; either is kept only when the zero test shows it equal to the terms as
+        given, and recorded for step (1.3), whose check repeats that test."""
+        if not check_zero("1.3", "", self._d(expr, s), self._sample_time, seed=3).holds:
+            return None
+        terms = sp.Add.make_args(expr)
+        affected = add(*[t for t in terms if t.has(s)])
+        kept = [t for t in terms if not t.has(s)]
+        tries = [collected(affected, list(self.qd.values()))]
+        tries += [substitute(affected, {s: v}) for v in (sp.S.Zero, sp.S.Half, sp.S.One)]
+        for new in tries:
+            if new.has(s) or new.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
+                continue
+            if check_zero("1.3", "", sub(affected, new), self._sample_time, seed=3).holds:
+                self._rewritten.append((what, s, affected, new))
+                return add(*kept, new)
+        return None
 
     def to_public(self, expr):
         """Rewrite an expression of the internal symbols (x, xdot, xddot) in dynamicsymbols
@@ -635,7 +673,9 @@ class ChaplyginSystem:
                               "their velocities only (checked when the model was built)",
                               lambda: [eq(self.qd[c], sp.Function("phi_" + _name(c))(
                                   *[self.q[i] for i in self._sig], *[self.qd[i] for i in self._sig]))
-                                  for c in self.dependent_coordinates]))
+                                  for c in self.dependent_coordinates]
+                              + [eq(old, new) for _, _, old, new in self._rewritten],
+                              self._rewritten_check(), note=self._rewritten_note()))
         at = {}
         chk = check_zero("1.4", "the solved accelerations satisfy (1.4)",
                          [substitute(e, self._accelerations(), at) for e in self._eom()],
@@ -657,6 +697,25 @@ class ChaplyginSystem:
         steps.append(Step("1.11", "the energy integral",
                           lambda: [eq(self._energy_shown(), sp.Symbol("h"))], chk))
         return steps
+
+    def _rewritten_check(self):
+        """None, or the check that each part of L or of a constraint written with a
+        dependent coordinate equals its rewriting free of it (:meth:`_free_of`)."""
+        if not self._rewritten:
+            return None
+        names = ", ".join(f"{what} (${sp.latex(s)}$)" for what, s, _, _ in self._rewritten)
+        return check_zero("1.3", "the terms written with a dependent coordinate do not depend "
+                          f"on it: {names}, each equal to its rewriting free of it",
+                          [sub(old, new) for _, _, old, new in self._rewritten],
+                          self._sample_time, seed=3)
+
+    def _rewritten_note(self):
+        if not self._rewritten:
+            return ""
+        return ("; ".join(f"{what} is written with the dependent coordinate {_readable(s)} "
+                          "but does not depend on it: those terms are rewritten free of it "
+                          "(shown as given = rewritten, equal by the check)" for what, s, _, _ in
+                          self._rewritten))
 
     def _floats_check(self):
         """None, or the check that each Float of the input was taken as the rational it
