@@ -506,6 +506,7 @@ def _cut(text, width):
 _UNI = [(r"\varepsilon", "ε"), (r"\epsilon", "ε"), (r"\partial", "∂"), (r"\Omega", "Ω"),
         (r"\omega", "ω"), (r"\theta", "θ"), (r"\sigma", "σ"), (r"\beta", "β"), (r"\nu", "ν"),
         (r"\varphi", "φ"), (r"\phi", "φ"), (r"\alpha", "α"), (r"\mu", "μ"), (r"\times", "×"),
+        (r"\psi", "ψ"), (r"\tau", "τ"), (r"\lambda", "λ"), (r"\delta", "δ"), (r"\gamma", "γ"),
         (r"\cdot", "⋅"), (r"\pm", "±"), (r"\sqrt", "√"), (r"\to", "→"), (r"\,", " "),
         (r"\quad", "  "), (r"\ne", "≠"), (r"\le", "≤"), (r"\ge", "≥"), (r"\sum", "Σ")]
 _COMB = {"dot": "\u0307", "ddot": "\u0308", "tilde": "\u0303"}

@@ -174,18 +174,22 @@ class Derivation:
     def labels(self):
         return [s.label for s in self.steps]
 
-    def only(self, *labels):
+    def only(self, *labels, exact=False):
         """The steps with these paper labels, in order, as a smaller Derivation; a label
         also selects its sub-labels ("1.26" selects (1.26a) and (1.26b), "3.10" selects
-        (3.10 OCR)).
+        (3.10 OCR)), unless ``exact=True``: then only the steps labelled exactly so.
 
         >>> import whittaker_teach as wt
         >>> wt.examples.sledge().reduce("x").steps.only("1.16", "1.23").labels
         ['1.16', '1.23']
         >>> wt.examples.sledge().reduce("x").steps.only("1.26").labels
         ['1.26', '1.26a', '1.26b']
+        >>> wt.examples.sledge().reduce("x").steps.only("1.26", exact=True).labels
+        ['1.26']
         """
         def wanted(label):
+            if exact:
+                return label in labels
             base = label.split(" ")[0]
             return (label in labels or base in labels
                     or (base[-1:].isalpha() and base[:-1] in labels))

@@ -221,3 +221,49 @@ def test_a_holonomic_system_takes_every_form():
     rec = agree(S)
     assert rec.ok and all(not row["reason"] for row in rec.rows), str(rec)
     assert RouthVoss(S).multipliers() == []
+
+
+def test_routh_voss_prints_the_multipliers_tidied_and_checks_them():
+    """[RVl] shows the multipliers of multipliers(), tidied (one fraction, sin^2 + cos^2 = 1),
+    and its check proves them equal to those solved."""
+    for S, n_ops in ((examples.appell_hamel(), 8), (examples.sleigh(), 25)):
+        rv = RouthVoss(S)
+        step = rv.steps["RVl"]
+        assert step.status == "verified"
+        shown = [S.to_public(e.rhs) for e in step.equations]
+        assert shown == rv.multipliers()
+        assert sum(sp.count_ops(e) for e in shown) <= n_ops
+    m, c, g0 = sp.symbols("m c g_0", positive=True)
+    assert RouthVoss(examples.appell_hamel()).multipliers() == [-g0 * m / (1 + c**2)]
+
+
+def test_hamel_coefficient_of_the_sleigh_is_tidied():
+    (gam,) = BoltzmannHamel(examples.sleigh()).hamel_coefficients().values()
+    th = sp.Symbol("theta")
+    assert gam == -1 / sp.cos(th)**2
+
+
+@pytest.mark.parametrize("cls, label, bad", [
+    (Voronets, "VorA", "psitheta"), (Maggi, "MagC", "x,psi"), (Kane, "Kanev", "x,psi"),
+    (Tzenoff, "Tzs", "Z_{psi}"), (Nielsen, "Nis", "N_{psi}")])
+def test_names_with_greek_indices_print_greek(cls, label, bad):
+    import re
+    step = cls(examples.rolling_disk() if label != "VorA" else examples.sleigh()).steps[label]
+    tex, text = step.to_latex(), step.to_unicode()
+    assert bad not in tex and not re.search(r"(?<!\\)(psi|theta)", tex)
+    assert "psi" not in text and "theta" not in text and "frac" not in text
+    assert "ψ" in text or "θ" in text
+
+
+def test_titles_keep_tall_maths_out_of_the_caption():
+    """A caption's in-line maths must not be taller than its line (the site scrolls)."""
+    for F, label in ((Maggi, "MagE"), (BoltzmannHamel, "BHg")):
+        title = F(examples.rolling_disk()).steps[label].title
+        assert r"\frac" not in title and "^r_" not in title
+
+
+def test_only_can_pick_exactly_one_label():
+    d = RouthVoss(examples.sledge()).steps
+    assert d.only("RV").labels == ["RV", "RVc", "RVl", "RVa"]
+    assert d.only("RV", exact=True).labels == ["RV"]
+    assert d.only("RV", "RVa", exact=True).labels == ["RV", "RVa"]

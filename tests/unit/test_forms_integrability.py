@@ -34,7 +34,11 @@ def test_non_integrable(make, cs):
     assert I.integrals is None
     assert I.brackets                                   # a component that does not vanish
     step = I.steps["Fr2"]
-    assert step.check.holds is False and "not integrable" in step.note
+    # the verdict is a finding, confirmed by a check that the bracket is not zero
+    assert step.check.holds is True and step.check.method == "refutation"
+    assert step.status == "verified" and "not integrable" in step.note
+    assert "does not vanish" in step.check.claim
+    assert I.verify().ok
 
 
 @pytest.mark.parametrize("make, n_integrals", [
@@ -49,6 +53,10 @@ def test_non_integrable(make, cs):
     (lambda: frobenius([D[z] - y * D[x], D[y] - D[x]], [x, y, z], dependent=[y, z]), 2),
     # one coordinate free: a line field is always integrable
     (lambda: frobenius({D[y]: sp.cos(x) * D[x], D[z]: D[x]}, [x, y, z]), 2),
+    # y xdot - x ydot = 0: the integrating factor 1/y^2, x/y = const
+    (lambda: frobenius([y * D[x] - x * D[y]], [x, y]), 1),
+    # 2 y xdot + x ydot = 0: closed after 1/(x y) (or x), x^2 y = const
+    (lambda: frobenius([2 * y * D[x] + x * D[y]], [x, y]), 1),
 ])
 def test_integrable_with_the_integrals(make, n_integrals):
     I = make()
@@ -80,3 +88,18 @@ def test_preconditions():
         frobenius([D[y] - D[x]])
     with pytest.raises(ModelError, match="no constraints"):
         frobenius(NonholonomicSystem(D[x]**2, [x]))
+
+
+def test_an_integrating_factor_over_a_coefficient_squared():
+    F = frobenius([y * D[x] - x * D[y]], [x, y]).integrals[0]
+    assert sp.simplify(F - x / y) == 0
+
+
+def test_the_brackets_are_tidied_and_named_in_latex():
+    I = frobenius(examples.sleigh())
+    (comp,) = I.brackets.values()
+    assert list(comp.values()) == [-1 / sp.cos(th)**2]
+    tex = frobenius(examples.rolling_disk()).steps["Fr2"].to_latex()
+    assert r"\begin{aligned}[" not in tex
+    assert r"[X_{\psi}, X_{\theta}]^{x}" in tex
+    assert "psi," not in frobenius(examples.rolling_disk()).steps["Fr1"].to_latex()

@@ -33,18 +33,18 @@ import sympy as sp
 from ..canonical import add, mul
 from ..dag import along, substitute
 from ..errors import ModelError
-from ..rewrite import pythagoras, rational
-from ..steps import Step, eq
+from ..rewrite import rational
+from ..steps import Step, eq, notation
 from ._form import Form
+from ._print import indexed, tidy
 
 __all__ = ["BoltzmannHamel"]
 
 
 def _tidy(e):
-    """One fraction (``rewrite.rational``, bounded), sin^2 + cos^2 read as 1 (either sign)."""
-    r = rational(e)
-    p = pythagoras(r)
-    return -pythagoras(-r) if p == r else p
+    """One fraction (``rewrite.rational``, bounded), sin^2 + cos^2 read as 1 where that
+    shortens it (:func:`._print.tidy`)."""
+    return tidy(e)
 
 
 class BoltzmannHamel(Form):
@@ -266,11 +266,11 @@ class BoltzmannHamel(Form):
                 eq(qd[i], add(*[mul(self.b[i, r], self.omega[r]) for r in range(n)]))
                 for i in range(n)]),
             Step("BHL", r"$L^*(q, \omega) = L(q, b\,\omega)$",
-                 lambda: [eq(sp.Symbol("L*"), self._Lstar())]),
-            Step("BHg", r"Hamel's coefficients $\gamma^r_{kl}$ (transpositional relations), "
-                 "those not zero, k < l", lambda: [
-                     eq(sp.Symbol(f"gamma^{self.omega.index(r) + 1}_"
-                                  f"{self.omega.index(k) + 1}{self.omega.index(l) + 1}"), g)
+                 lambda: [eq(notation("L*", "L^{*}"), self._Lstar())]),
+            Step("BHg", r"Hamel's coefficients $\gamma$ (the transpositional relations), those "
+                 r"not zero, for $k < l$", lambda: [
+                     eq(indexed("γ", [self.omega.index(k) + 1, self.omega.index(l) + 1],
+                                sup=self.omega.index(r) + 1, base_tex=r"\gamma"), g)
                      for (r, k, l), g in self.hamel_coefficients().items()]),
             Step("BH", r"the Boltzmann-Hamel equations at $\omega_\beta = 0$",
                  lambda: [eq(e, 0) for e in self._bh_equations()]),

@@ -29,9 +29,9 @@ import sympy as sp
 
 from ..canonical import add, mul
 from ..errors import guarded
-from ..rewrite import rational
 from ..steps import Derivation, Step, eq
 from ..verify import check_zero, shared_points
+from ._print import indexed, tidy
 from .routh_voss import RouthVoss
 
 __all__ = ["chetaev"]
@@ -44,6 +44,7 @@ def chetaev(system):
     S = system
     rv = RouthVoss(S)
     J = rv._jacobian()
+    # plain symbols (delta_x): variables a reader substitutes into
     delta = {c: sp.Symbol("delta_" + str(S.q[c])) for c in S.coordinates}
     cond = [add(*[mul(J[i][j], delta[c]) for j, c in enumerate(S.coordinates) if J[i][j] != 0])
             for i in range(len(S._f))]
@@ -68,8 +69,8 @@ def chetaev(system):
              lambda: [eq(a, b) for a, b in free]),
         Step("Ch3", r"the ideal constraint force $R_s = -\sum_\beta \lambda_\beta\,"
              r"\partial f_\beta/\partial\dot q_s$ (the multipliers of [RV]) and its power",
-             lambda: [eq(sp.Symbol("R_" + str(S.q[c])), r) for c, r in zip(S.coordinates, R)]
-             + [eq(l, rational(sol[l], sig)) for l in lam]
+             lambda: [eq(indexed("R", [S.q[c]]), r) for c, r in zip(S.coordinates, R)]
+             + [eq(l, tidy(sol[l], sig)) for l in lam]
              + [eq(sp.Symbol("P_R"), power)], chk),
     ]
     return Derivation(f"{S.name}: Chetaev's virtual displacements", steps)

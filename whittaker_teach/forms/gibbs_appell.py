@@ -36,6 +36,7 @@ from ..canonical import add, mul
 from ..dag import substitute
 from ..steps import Step, eq
 from ._form import Form
+from ._print import indexed
 
 __all__ = ["GibbsAppell"]
 
@@ -152,10 +153,11 @@ class GibbsAppell(Form):
                     r"\alpha\cdot(\omega\times I_G\omega)$ each"),
                  lambda: [eq(sp.Symbol("S"), self._S())]),
             Step("GAr", r"$\tilde S$: the constraints substituted at velocity and "
-                 "acceleration level", lambda: [eq(sp.Symbol("Stilde"), self._S_tilde())]),
+                 "acceleration level",
+                 lambda: [eq(sp.Symbol("Stilde"), self._S_tilde())]),
             Step("GAq", r"the generalized forces on the free virtual displacements, "
                  r"$\tilde Q_\sigma = -\sum_s C_{s\sigma}\,\partial V/\partial q_s$",
-                 lambda: [eq(sp.Symbol("Q_" + str(S.q[s])), Q)
+                 lambda: [eq(indexed("Q̃", [S.q[s]], base_tex=r"\tilde{Q}"), Q)
                           for s, Q in zip(S.sigma, self._forces())]),
             Step("GA", r"Appell's equations $\partial\tilde S/\partial\ddot q_\sigma = "
                  r"\tilde Q_\sigma$", lambda: [eq(e, 0) for e in self._equations()]),

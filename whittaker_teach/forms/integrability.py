@@ -19,8 +19,10 @@ a point proves the constraints non-holonomic, and the step shows it [Fr2].  Wher
 they are integrable, [Fr3] shows the integrals F_beta(q) = const found by
 integrating the closed forms dq_beta - sum B dq_sigma in turn (the dependent
 coordinates already integrated substituted), or for one constraint whose B
-contains its own q_beta, an integrating factor of the form as given (1 or one over
-a coefficient); each integral is checked: dF/dt = 0 on the constraints.
+contains its own q_beta, an integrating factor of the form as given (1, one over a
+coefficient, its square or a product of two; in two coordinates also 1/x^2, 1/y^2,
+1/(x^2 + y^2) and a factor of one variable); each integral is checked: dF/dt = 0 on
+the constraints.
 
 >>> import sympy as sp
 >>> from sympy.physics.mechanics import dynamicsymbols
@@ -29,6 +31,8 @@ a coefficient); each integral is checked: dF/dt = 0 on the constraints.
 >>> disguised = frobenius([x*x.diff(t) + y*y.diff(t)], [x, y])
 >>> disguised.is_holonomic, disguised.integrals
 (True, [x(t)**2/2 + y(t)**2/2])
+>>> frobenius([y*x.diff(t) - x*y.diff(t)], [x, y]).integrals
+[x(t)/y(t)]
 >>> from whittaker_teach.forms import examples
 >>> sledge = frobenius(examples.sledge())
 >>> sledge.is_holonomic, sledge.brackets
@@ -42,7 +46,8 @@ import sympy as sp
 from ..canonical import add, mul
 from ..errors import ModelError, guarded
 from ..steps import Derivation, Report, Step, eq
-from ..verify import check_zero, shared_points
+from ..verify import DPS, Check, check_zero, largest_value, shared_points
+from ._print import bracket, indexed, tidy
 from .model import NonholonomicSystem
 
 __all__ = ["frobenius", "Integrability"]
@@ -127,13 +132,12 @@ class Integrability:
     def brackets(self):
         """{(q_sigma, q_tau): {q_beta: component}}: the components of the brackets that do
         not vanish (empty when holonomic), in dynamicsymbols, tidied."""
-        from ..rewrite import rational
         S = self.system
         out = {}
         for (s, tau, b), chk in self._checks().items():
             if not chk.holds:
                 out.setdefault((s, tau), {})[b] = S.to_public(
-                    rational(self._components()[(s, tau)][b]))
+                    tidy(self._components()[(s, tau)][b]))
         return out
 
     # ----- [Fr3] ------------------------------------------------------------
@@ -193,12 +197,28 @@ class Integrability:
         return self._cache["F"]
 
     def _integrating_factor(self):
-        """One constraint: mu * (its form as given) closed, mu = 1 or 1/a coefficient."""
+        """One constraint: mu * (its form as given) closed, mu tried in turn among 1, one
+        over a coefficient, over its square, over the product of two; in two coordinates
+        x, y also 1/x^2, 1/y^2, 1/(x y), 1/(x^2 + y^2) and the factors of one variable
+        solving the equation for mu (:meth:`_one_variable_factors`).  Each closed form
+        is integrated one coordinate at a time; the integral is checked in [Fr3]."""
         S = self.system
         f = S._f[0]
         a = {c: S._d(f, S.qd[c]) for c in S.coordinates}
-        for mu in [sp.S.One] + [1 / v for v in a.values() if v != 0]:
+        nz = [v for v in a.values() if v != 0]
+        tries = ([sp.S.One] + [1 / v for v in nz] + [1 / v**2 for v in nz]
+                 + [1 / (u * v) for i, u in enumerate(nz) for v in nz[i + 1:]])
+        if len(S.coordinates) == 2:
+            x, y = (S.q[c] for c in S.coordinates)
+            tries += [1 / x**2, 1 / y**2, 1 / (x * y), 1 / (x**2 + y**2)]
+            tries += self._one_variable_factors(a)
+        seen = set()
+        for mu in tries:
             w = {c: sp.cancel(mu * v) for c, v in a.items()}
+            key = tuple(w.values())
+            if key in seen:
+                continue
+            seen.add(key)
             closed = all(sp.cancel(S._d(w[c], S.q[e]) - S._d(w[e], S.q[c])) == 0
                          for i, c in enumerate(S.coordinates) for e in S.coordinates[i + 1:])
             if not closed:
@@ -216,6 +236,27 @@ class Integrability:
             else:
                 return [Phi]
         return None
+
+    def _one_variable_factors(self, a):
+        """For P dx + Q dy: the integrating factors mu(x) = exp(int (P_y - Q_x)/Q dx) when
+        that ratio is free of y, and mu(y) = exp(int (Q_x - P_y)/P dy) when free of x
+        (the equation for mu, d(mu P)/dy = d(mu Q)/dx, solved where it is one of one
+        variable); [] when neither is."""
+        S = self.system
+        (cx, P), (cy, Q) = a.items()
+        x, y = S.q[cx], S.q[cy]
+        curl = sp.cancel(S._d(P, y) - S._d(Q, x))
+        out = []
+        for coef, z, sign in ((Q, x, 1), (P, y, -1)):
+            if coef == 0 or curl == 0:
+                continue
+            r = sp.cancel(sign * curl / coef)
+            if r.has(y if z == x else x):
+                continue
+            I = sp.integrate(r, z)
+            if not I.has(sp.Integral):
+                out.append(sp.exp(I))
+        return out
 
     @property
     def integrals(self):
@@ -237,6 +278,19 @@ class Integrability:
                           r"$dF/dt = \sum_s \partial F/\partial q_s\,\dot q_s = 0$", rates,
                           S.sample, seed=17)
 
+    def _refutation(self, s, tau, b):
+        """The verdict on a component that does not vanish: a check that it is not zero
+        (its largest value at the sampled points, well above rounding), and the note."""
+        S, q = self.system, self.system.q
+        name = f"$[X_{{{sp.latex(q[s])}}}, X_{{{sp.latex(q[tau])}}}]$"
+        K = self._components()[(s, tau)][b]
+        worst = largest_value(K, S.sample, seed=13)
+        chk = Check("Fr2", f"the ${sp.latex(q[b])}$-component of {name} does not vanish",
+                    worst > 1e-6, "refutation", f"numerically at 6 random admissible points, "
+                    f"mpmath at {DPS} digits: non-zero, as large as {worst:.2g}", 6, worst)
+        return chk, (f"not integrable (non-holonomic): the bracket {name} does not vanish"
+                     if chk.holds else "")
+
     @property
     @guarded("the steps of the Frobenius test")
     def steps(self):
@@ -246,21 +300,25 @@ class Integrability:
             return self._cache["steps"]
         S = self.system
         q = S.q
-        st = [Step("Fr1", r"the allowed velocities: $X_\sigma = \partial/\partial q_\sigma + "
-                   r"\sum_\beta B_{\beta\sigma}\,\partial/\partial q_\beta$",
-                   lambda: [eq(sp.Symbol(f"B_{q[b]}{q[s]}"), self._B(b, s))
+        st = [Step("Fr1", r"the allowed velocities: the fields $X_\sigma = \partial/\partial "
+                   r"q_\sigma + B_{\beta\sigma}\,\partial/\partial q_\beta$ (summed over "
+                   r"$\beta$), their coefficients",
+                   lambda: [eq(indexed("B", [q[b], q[s]]), self._B(b, s))
                             for b in S.beta for s in S.sigma])]
         checks = self._checks()
-        bad = [c for c in checks.values() if not c.holds]
-        shown = bad[0] if bad else max(checks.values(), key=lambda c: c.max_residual,
-                                       default=None)
+        bad = [k for k, c in checks.items() if c.holds is False]
+        undecided = [c for c in checks.values() if c.holds is None]
+        if bad:
+            shown, note = self._refutation(*bad[0])
+        else:
+            shown = undecided[0] if undecided else max(
+                checks.values(), key=lambda c: c.max_residual, default=None)
+            note = ""
         st.append(Step("Fr2", "the brackets $[X_\\sigma, X_\\tau]$, component by component "
                        "(Frobenius: holonomic if and only if all vanish)", lambda: [
-                           eq(sp.Symbol(f"[X_{q[s]},X_{q[tau]}]^{q[b]}"), K)
+                           eq(bracket(q[s], q[tau], q[b]), K)
                            for (s, tau), comps in self._components().items()
-                           for b, K in comps.items()], shown,
-                       note="" if not bad else "a component does not vanish: the constraints "
-                       "are not integrable (non-holonomic)"))
+                           for b, K in comps.items()], shown, note=note))
         if self.is_holonomic:
             F = self._integrals()
             if F is None:

@@ -33,12 +33,11 @@ takes loads, not potential energies: the generalized active forces of the bodies
 
 from __future__ import annotations
 
-import sympy as sp
-
 from ..canonical import add, mul
 from ..errors import ModelError
 from ..steps import Step, eq
 from ._form import Form
+from ._print import indexed
 
 __all__ = ["Kane"]
 
@@ -142,12 +141,12 @@ class Kane(Form):
         return [
             Step("Kanev", r"the partial velocities $v_{s,r} = \partial\dot q_s/\partial u_r$ "
                  r"of the generalized speeds $u_r = \dot q_\sigma$", lambda: [
-                     eq(sp.Symbol(f"v_{S.q[c]},{S.q[r]}"), v[c, r])
+                     eq(indexed("v", [S.q[c], S.q[r]], sep=","), v[c, r])
                      for c in S.coordinates for r in S.sigma]),
             Step("KaneF", r"the generalized active forces $F_r$ and inertia forces $F^*_r$",
                  lambda: [e for r, (F, Fs) in zip(S.sigma, self._forces())
-                          for e in (eq(sp.Symbol(f"F_{S.q[r]}"), F),
-                                    eq(sp.Symbol(f"F*_{S.q[r]}"), Fs))]),
+                          for e in (eq(indexed("F", [S.q[r]]), F),
+                                    eq(indexed("F*", [S.q[r]], base_tex="F^{*}"), Fs))]),
             Step("Kane", r"Kane's equations $F_r + F^*_r = 0$",
                  lambda: [eq(e, 0) for e in self._equations()]),
         ]

@@ -23,11 +23,10 @@ every coordinate are formed first (the dependent ones too).
 
 from __future__ import annotations
 
-import sympy as sp
-
 from ..canonical import add, mul
 from ..steps import Step, eq
 from ._form import Form
+from ._print import indexed
 
 __all__ = ["Maggi"]
 
@@ -64,16 +63,16 @@ class Maggi(Form):
     def _steps_before(self):
         S = self.system
         return [
-            Step("MagE", r"Lagrange's expressions $E_s = \frac{d}{dt}\frac{\partial L}"
-                 r"{\partial\dot q_s} - \frac{\partial L}{\partial q_s}$ of every coordinate",
-                 lambda: [eq(sp.Symbol("E_" + str(S.q[c])), E)
+            Step("MagE", r"Lagrange's expressions $E_s = (d/dt)\,\partial L/\partial\dot q_s"
+                 r" - \partial L/\partial q_s$ of every coordinate",
+                 lambda: [eq(indexed("E", [S.q[c]]), E)
                           for c, E in zip(S.coordinates, S.lagrange_expressions())]),
             Step("Magc", "the dependent velocities and accelerations, from the constraints "
                  "and their derivative", lambda: [eq(k, v) for k, v in S.on_constraints.items()]),
             Step("MagC", r"the free virtual displacements: $\delta q_s = \sum_\sigma "
                  r"C_{s\sigma}\,\delta q_\sigma$, $C_{s\sigma} = \partial\dot q_s/\partial"
                  r"\dot q_\sigma$", lambda: [
-                     eq(sp.Symbol(f"C_{S.q[c]},{S.q[s]}"), S.C(c, s))
+                     eq(indexed("C", [S.q[c], S.q[s]]), S.C(c, s))
                      for c in S.beta for s in S.sigma]),
             Step("Mag", r"Maggi's equations $\sum_s C_{s\sigma} E_s = 0$",
                  lambda: [eq(e, 0) for e in self._equations()]),

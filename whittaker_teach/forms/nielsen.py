@@ -32,6 +32,7 @@ from ..canonical import add, mul
 from ..steps import Step, eq
 from ..verify import check_identity
 from ._form import Form
+from ._print import indexed
 
 __all__ = ["Nielsen", "Tzenoff"]
 
@@ -94,7 +95,7 @@ class Nielsen(_Projected):
                      lambda: [eq(sp.Symbol("Tdot"), self.Tdot())]),
                 Step("Nis", r"Nielsen's expressions $\partial\dot T/\partial\dot q_s - "
                      r"2\,\partial T/\partial q_s - Q_s$ of every coordinate",
-                     lambda: [eq(sp.Symbol("N_" + str(S.q[c])), e)
+                     lambda: [eq(indexed("N", [S.q[c]]), e)
                               for c, e in zip(S.coordinates, self._full())],
                      self._lagrange_check()),
                 Step("Ni", r"Nielsen's equations projected: $\sum_s C_{s\sigma} N_s = 0$",
@@ -126,9 +127,9 @@ class Tzenoff(_Projected):
         S = self.system
         return [Step("TzT", r"$\ddot T$, the second rate of $T$ (with the jerks)",
                      lambda: [eq(sp.Symbol("Tddot"), self.Tddot())]),
-                Step("Tzs", r"Tzenoff's expressions $\frac12\partial\ddot T/\partial\ddot q_s"
-                     r" - \frac32\,\partial T/\partial q_s - Q_s$ of every coordinate",
-                     lambda: [eq(sp.Symbol("Z_" + str(S.q[c])), e)
+                Step("Tzs", r"Tzenoff's expressions $\frac{1}{2}\,\partial\ddot T/\partial\ddot q_s"
+                     r" - \frac{3}{2}\,\partial T/\partial q_s - Q_s$ of every coordinate",
+                     lambda: [eq(indexed("Z", [S.q[c]]), e)
                               for c, e in zip(S.coordinates, self._full())],
                      self._lagrange_check()),
                 Step("Tz", r"Tzenoff's equations projected: $\sum_s C_{s\sigma} Z_s = 0$",

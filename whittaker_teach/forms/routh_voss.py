@@ -33,9 +33,10 @@ import sympy as sp
 
 from ..canonical import add, mul
 from ..errors import guarded
-from ..rewrite import rational
 from ..steps import Step, eq
+from ..verify import check_identity
 from ._form import Form
+from ._print import tidy
 
 __all__ = ["RouthVoss"]
 
@@ -120,15 +121,29 @@ class RouthVoss(Form):
             st.append(Step("RVc", "the constraints differentiated once (linear in the "
                            "accelerations)", lambda: [eq(e, 0) for e in
                                                        self._acceleration_constraints()]))
-            sol = self._solution()
+            sol, shown = self._solution(), self._tidied()
+            S = self.system
+            chk = check_identity("RVl", "the multipliers shown (one fraction, "
+                                 r"$\sin^2 + \cos^2 = 1$ where it shortens) are those solved",
+                                 [shown[l] for l in lam], [sol[l] for l in lam], S.sample,
+                                 seed=23)
             st.append(Step("RVl", "the multipliers, solved with the accelerations",
-                           lambda: [eq(l, sol[l]) for l in lam]))
+                           [eq(l, shown[l]) for l in lam], chk))
         return st
+
+    def _tidied(self):
+        """{lambda_beta: the multiplier solved, tidied}: one fraction, the numerator
+        collected on the independent velocities, sin^2 + cos^2 read as 1 where it
+        shortens (:func:`._print.tidy`; internal symbols)."""
+        if "lam" not in self._cache:
+            S, sol = self.system, self._solution()
+            sig = [S.qd[c] for c in S.sigma]
+            self._cache["lam"] = {l: tidy(sol[l], sig) for l in self._lambdas()}
+        return self._cache["lam"]
 
     @guarded("solving for the multipliers")
     def multipliers(self):
         """lambda_beta, one per constraint as given (LagrangesMethod's sign), as functions
         of the coordinates and the independent velocities."""
-        S, sol = self.system, self._solution()
-        sig = [S.qd[c] for c in S.sigma]
-        return [S.to_public(rational(sol[l], sig)) for l in self._lambdas()]
+        S, lam = self.system, self._tidied()
+        return [S.to_public(lam[l]) for l in self._lambdas()]

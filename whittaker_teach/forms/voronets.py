@@ -41,6 +41,7 @@ from ..dag import along, substitute
 from ..errors import ModelError, guarded
 from ..steps import Step, eq
 from ._form import Form
+from ._print import indexed, tidy
 
 __all__ = ["Voronets"]
 
@@ -130,12 +131,12 @@ class Voronets(Form):
                    "substituted (the dependent coordinates stay)",
                    lambda: [eq(sp.Symbol("Ltilde"), self._Ltilde())]),
               Step("VorP", r"the dependent momenta $P_\beta = (\partial L/\partial\dot "
-                   r"q_\beta)\tilde{}$", lambda: [eq(sp.Symbol("P_" + str(S.q[b])), p)
+                   r"q_\beta)\tilde{}$", lambda: [eq(indexed("P", [S.q[b]]), p)
                                                   for b, p in self._momenta().items()])]
         if S.is_linear and S.beta:
             st.append(Step("VorA", r"Voronets' coefficients $A^\beta_{\sigma\tau}$ "
                            "(those not zero)", lambda: [
-                               eq(sp.Symbol(f"A^{S.q[b]}_{S.q[s]}{S.q[tau]}"), A)
+                               eq(indexed("A", [S.q[s], S.q[tau]], sup=S.q[b]), tidy(A))
                                for (b, s, tau), A in self.coefficients().items()]))
         st.append(Step("Vor", "Voronets' equations, one per independent coordinate",
                        lambda: [eq(e, 0) for e in self._equations()]))
