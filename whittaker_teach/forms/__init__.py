@@ -19,7 +19,7 @@ random admissible points, in 40-digit arithmetic.
 :class:`Nielsen`            dT/dt differentiated in the velocities (Nielsen 1935)
 :class:`Tzenoff`            d^2T/dt^2 differentiated in the accelerations (Tzenoff 1924)
 :func:`frobenius`           integrability of linear constraints (Frobenius 1877)
-:func:`chetaev`             Chetaev's virtual displacements and the constraint force (1932)
+:func:`chetaev`             Chetaev's virtual displacements and the constraint force (1932-33)
 ==========================  ===========================================================
 
 A system comes from a Lagrangian and its constraints, or from a

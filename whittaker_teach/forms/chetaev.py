@@ -1,4 +1,4 @@
-"""Chetaev's virtual displacements (Chetaev 1932) for the constraints of a system.
+"""Chetaev's virtual displacements (Chetaev 1932-33) for the constraints of a system.
 
 A constraint f_beta(q, qdot) = 0 restricts the virtual displacements by Chetaev's
 condition
@@ -6,7 +6,7 @@ condition
     sum_s df_beta/dqdot_s delta q_s = 0                                       [Ch1]
 
 which for a linear constraint A(q) qdot = 0 is the usual A(q) delta q = 0, and for
-a nonlinear one is a definition (Chetaev 1932; Appell's example of a weight whose
+a nonlinear one is a definition (Chetaev 1932-33; Appell's example of a weight whose
 vertical speed is tied to its horizontal speed, zdot = c sqrt(xdot^2 + ydot^2),
 realised as the limit of a mechanism, Appell 1911, Hamel 1949).  Solved, the free
 displacements are delta q_beta = sum_sigma B_beta,sigma delta q_sigma with Chetaev's
