@@ -782,10 +782,46 @@ def page_name(name):
     return f"{stem}.html"
 
 
-def write_feedback(folder, names, results):
-    """One HTML page per submission: its parts, right or not, and the grader's messages."""
+class UnsafeFolder(ValueError):
+    """A feedback folder another account could plant files or links in."""
+
+
+def _private_folder(folder):
+    """``folder``, made 0700 if missing; an existing one must be a real folder of this
+    user that no one else can write in (a link planted there would make the grader,
+    often root, write through it)."""
+    import stat
     folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
+    try:
+        st = os.lstat(folder)
+    except FileNotFoundError:
+        folder.parent.mkdir(parents=True, exist_ok=True)
+        os.mkdir(folder, 0o700)
+        return folder
+    if not stat.S_ISDIR(st.st_mode):
+        raise UnsafeFolder(f"{folder} is not a folder (a link or a file): give a new folder "
+                           "for the feedback pages")
+    if st.st_uid != os.geteuid() or st.st_mode & 0o022:
+        raise UnsafeFolder(f"{folder} can be written by other accounts: give a new folder "
+                           "for the feedback pages (the grader makes it, mode 0700)")
+    return folder
+
+
+def _write_private(path, text):
+    """Write ``path`` without following a link: a new file (O_EXCL|O_NOFOLLOW) renamed
+    over the old name."""
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0),
+                 0o600)
+    with os.fdopen(fd, "w", encoding="utf-8") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
+def write_feedback(folder, names, results):
+    """One HTML page per submission: its parts, right or not, and the grader's messages,
+    into a private folder (:func:`_private_folder`), never through a link."""
+    folder = _private_folder(folder)
     for name in names:
         rows = results[name]
         items = []
@@ -809,7 +845,7 @@ def write_feedback(folder, names, results):
                 f"{_num(got)} of {_num(most)} points.</p>"
                 "<table><tr><th>part</th><th>result</th><th>points</th><th>message</th></tr>"
                 + "".join(items) + "</table></body></html>\n")
-        (folder / page_name(name)).write_text(page, encoding="utf-8")
+        _write_private(folder / page_name(name), page)
 
 
 class NothingFound(ValueError):
@@ -954,6 +990,12 @@ def main(args):
     why = sandbox.available()
     if why and not args.unsafe:
         return _refuse_sandbox(why)
+    if opt["feedback"]:
+        try:                        # before any notebook runs, not after the class
+            _private_folder(opt["feedback"])
+        except UnsafeFolder as exc:
+            print(f"grade: {exc}", file=sys.stderr)
+            return 2
     settings = dict(feedback=opt["feedback"], jobs=args.jobs, cell_timeout=args.cell_timeout,
                     timeout=args.timeout, memory=args.memory, quiet=args.quiet,
                     unsafe=bool(why), gradebook=opt["gradebook"])
