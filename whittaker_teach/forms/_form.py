@@ -13,7 +13,20 @@ from .model import NonholonomicSystem
 __all__ = ["Form"]
 
 
-class Form:
+class Shown:
+    """What every object with ``steps`` (a Derivation kept in ``_cache``) offers."""
+
+    def verify(self):
+        """The checks of the steps, re-run: a :class:`~whittaker_teach.steps.Report`."""
+        self._cache.pop("steps", None)
+        return Report(s.check for s in self.steps if s.check)
+
+    def show(self, latex=False):
+        """Show the steps (notebook: rendered; terminal: Unicode)."""
+        return self.steps.show(latex=latex)
+
+
+class Form(Shown):
     """A classical form of the equations of motion of one system (subclasses say which).
 
     Subclasses set ``label`` (printed in square brackets), ``title``, ``source``
@@ -112,15 +125,6 @@ class Form:
                 st = self._steps_before() + [self._acceleration_step()]
             self._cache["steps"] = Derivation(f"{self.system.name}: {self.title}", st)
         return self._cache["steps"]
-
-    def verify(self):
-        """The checks of the steps, re-run: a :class:`~whittaker_teach.steps.Report`."""
-        self._cache.pop("steps", None)
-        return Report(s.check for s in self.steps if s.check)
-
-    def show(self, latex=False):
-        """Show the steps (notebook: rendered; terminal: Unicode)."""
-        return self.steps.show(latex=latex)
 
     def __repr__(self):
         return f"<{self.name} [{self.label}] of {self.system.name!r}>"

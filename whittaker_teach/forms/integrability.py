@@ -45,8 +45,9 @@ import sympy as sp
 
 from ..canonical import add, mul
 from ..errors import ModelError, guarded
-from ..steps import Derivation, Report, Step, eq
+from ..steps import Derivation, Step, eq
 from ..verify import DPS, Check, check_zero, largest_value, shared_points
+from ._form import Shown
 from ._print import bracket, indexed, tidy
 from .model import NonholonomicSystem
 
@@ -63,7 +64,7 @@ def frobenius(constraints, coordinates=None, dependent=None):
     return Integrability(constraints, coordinates, dependent)
 
 
-class Integrability:
+class Integrability(Shown):
     """Frobenius' test for linear constraints; ``is_holonomic``, ``brackets``,
     ``integrals`` and ``steps``."""
 
@@ -330,13 +331,6 @@ class Integrability:
                                         for i, e in enumerate(F)], self._integral_check()))
         self._cache["steps"] = Derivation("Frobenius' test", st)
         return self._cache["steps"]
-
-    def verify(self):
-        self._cache.pop("steps", None)
-        return Report(s.check for s in self.steps if s.check)
-
-    def show(self, latex=False):
-        return self.steps.show(latex=latex)
 
     def __repr__(self):
         return (f"<Integrability of {len(self.system.beta)} constraint(s): "
