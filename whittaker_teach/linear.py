@@ -28,7 +28,7 @@ import sympy as sp
 
 from . import polywalk
 
-__all__ = ["lu_solve", "fraction_free_solve"]
+__all__ = ["lu_solve", "fraction_free_solve", "solve_with_regular_poles"]
 
 #: :func:`fraction_free_solve` gives up (``polywalk.TooLarge``) when a product of the
 #: numbers of terms of two polynomials whose gcd it takes exceeds this
@@ -177,3 +177,32 @@ def fraction_free_solve(M, rhs, limit=FRACTION_FREE_TERMS_LIMIT):
             num, den = -num, -den
         out.append((walk.as_expr(num), walk.as_expr(den)))
     return out
+
+
+def solve_with_regular_poles(M, rhs):
+    """The solution (a list) of ``M x = rhs`` whose only poles are those of ``M``: the
+    elimination is fraction-free in M's entries alone (:func:`fraction_free_solve` with a
+    right-hand side of placeholders), and ``rhs`` is put in afterwards, so that a large
+    right-hand side (accelerations, their derivatives) never enters a gcd.  The identity
+    is solved as it stands; a matrix whose entries are not rational functions of their
+    symbols, functions and roots, or too large for a gcd, by :func:`lu_solve`.
+
+    >>> th, ph, a, b = sp.symbols("theta phi a b")
+    >>> M = sp.Matrix([[-sp.sin(th), sp.cos(th)], [-sp.sin(th + ph), sp.cos(th + ph)]])
+    >>> x = solve_with_regular_poles(M, sp.Matrix([a, b]))
+    >>> any(d.has(sp.sin(th)) and not d.has(ph) for d in (sp.fraction(e)[1] for e in x))
+    False
+    >>> sp.expand(sp.expand_trig(sp.simplify(M * sp.Matrix(x) - sp.Matrix([a, b])))) == sp.zeros(2, 1)
+    True
+    """
+    n = M.rows
+    if M == sp.eye(n):
+        return list(rhs)
+    slots = [sp.Dummy(f"r{i}") for i in range(n)]
+    try:
+        parts = fraction_free_solve(M, sp.Matrix(slots))
+    except (polywalk.NotPolynomial, polywalk.TooLarge):
+        return lu_solve(M, rhs)
+    put = dict(zip(slots, rhs))
+    return [num.xreplace(put) / den for num, den in parts]
+

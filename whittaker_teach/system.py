@@ -47,84 +47,20 @@ from sympy.core.function import AppliedUndef
 
 from .coordinates import T, name, sign_assumptions
 from .canonical import add, mul, negated, power, sub
-from .dag import diff, instances, max_depth, substitute, zeroed
-from .errors import ModelError, ModelTypeError, guarded
-from .linear import lu_solve
+from .dag import diff, substitute, zeroed
+from .errors import ModelError, guarded
+from .inputs import check_coordinates, check_values, readable, require_expr, subexpressions
+from .linear import lu_solve, solve_with_regular_poles
 from .reduction import Reduction
 from .rewrite import collected, rational
 from .steps import Derivation, Report, Step, eq
-from .verify import (DPS, EXACT_SIZE_LIMIT, At, Unevaluable, check_identity, check_zero,
+from .verify import (DPS, EXACT_SIZE_LIMIT, At, Unevaluable, check_zero,
                      shared_points, within_size)
 
 __all__ = ["ChaplyginSystem"]
 
 
-#: Deepest nesting of an input expression: differentiating it twice (1.4) must stay
-#: well inside Python's recursion limit.
-MAX_DEPTH = 30
-
-
-def _nodes(expr):
-    """The distinct subexpressions of ``expr`` (one walk: ``dag.instances``)."""
-    return set(instances(expr, sp.Basic))
-
-
-def _check_values(expr, what):
-    """Refuse what the derivation cannot treat as a real function of the coordinates:
-    infinities, NaN, complex coefficients, too deep a nesting."""
-    nodes = _nodes(expr)
-    if sp.nan in nodes:
-        raise ModelError(f"{what} contains nan (not a number): L and the constraints must be "
-                         "finite real expressions (1.1)")
-    if any(x in nodes for x in (sp.oo, -sp.oo, sp.zoo)):
-        raise ModelError(f"{what} contains an infinity (oo, -oo or zoo): L and the constraints must "
-                         "be finite real expressions (1.1)")
-    if sp.I in nodes:
-        raise ModelError(f"{what} contains the imaginary unit I: complex coefficients are not "
-                         "allowed, L and the constraints must be real (1.1), (1.11)")
-    if max_depth(expr, MAX_DEPTH) > MAX_DEPTH:
-        raise ModelError(f"{what} is nested more than {MAX_DEPTH} levels deep: too deep to "
-                         "differentiate (1.4) reliably; write it with fewer nested functions")
-
-
 _name, _sign_assumptions = name, sign_assumptions
-
-
-def _require_expr(value, what):
-    if isinstance(value, bool) or not isinstance(value, (sp.Basic, int, float)):
-        raise ModelTypeError(
-            f"{what} must be a SymPy expression, got {type(value).__name__} {value!r:.60}")
-    value = sp.sympify(value)
-    if not isinstance(value, sp.Expr):
-        raise ModelTypeError(f"{what} must be a SymPy expression (not an equation or a "
-                             f"relation), got {type(value).__name__}: {value}")
-    return value
-
-
-def _check_coordinates(coordinates):
-    if isinstance(coordinates, (sp.Basic, str)) or not hasattr(coordinates, "__iter__"):
-        raise ModelTypeError("coordinates must be a list of dynamicsymbols such as "
-                             f"[x, theta, y], got {type(coordinates).__name__}")
-    coords = list(coordinates)
-    if not coords:
-        raise ModelError("coordinates is empty: a system needs at least one coordinate q_s (1.1)")
-    for c in coords:
-        if not (isinstance(c, AppliedUndef) and len(c.args) == 1
-                and isinstance(c.args[0], sp.Symbol) and c.args[0].name == T.name):
-            raise ModelTypeError(
-                f"coordinate {c!r} is not a function of time: make coordinates with "
-                "sympy.physics.mechanics.dynamicsymbols, e.g. x, y = dynamicsymbols('x y')")
-    times = {c.args[0] for c in coords}
-    if len(times) > 1:
-        raise ModelTypeError("the coordinates are functions of different time symbols "
-                             f"{sorted(map(repr, times))} (one declared real=True?): use one "
-                             "time symbol for all of them")
-    names = [_name(c) for c in coords]
-    dup = sorted({n for n in names if names.count(n) > 1})
-    if dup:
-        raise ModelError(f"duplicate coordinates: {', '.join(dup)} appear more than once "
-                         "in the list of coordinates q_s (1.1)")
-    return coords
 
 
 #: above this many independent coordinates, (1.4) and the energy (1.11) are solved and
@@ -149,13 +85,6 @@ def _zero_at(point):
         except (ZeroDivisionError, ValueError, OverflowError, TypeError):
             return True              # not a usable pivot at this point
     return iszero
-
-
-def _readable(expr) -> str:
-    """``expr`` on one line for an error message, as sympy.physics.mechanics prints it:
-    x for x(t), x' for its time derivative (``vsprint``)."""
-    from sympy.physics.vector.printing import vsprint
-    return vsprint(expr)
 
 
 class ChaplyginSystem:
@@ -197,7 +126,7 @@ class ChaplyginSystem:
                  name=None):
         from .mechanics_input import constraint_expressions, dependent_velocities
         self.name = name or "system"
-        self.coordinates = _check_coordinates(coordinates)
+        self.coordinates = check_coordinates(coordinates)
         self._t = self.coordinates[0].args[0]       # dynamicsymbols._t, or t real=True
         self._make_symbols()
         self.rationalized = {}
@@ -216,10 +145,10 @@ class ChaplyginSystem:
         if not self.independent_coordinates:
             raise ModelError("every velocity is dependent: at least one independent "
                              "coordinate q_sigma is needed (1.1: eps = n - g >= 1)")
-        L = self._exact(_require_expr(lagrangian, "the Lagrangian L"))
+        L = self._exact(require_expr(lagrangian, "the Lagrangian L"))
         self.lagrangian = L
         self.constraints = {k.expr.diff(self._t): self._exact(
-            _require_expr(v, f"the constraint for {k}")) for k, v in dependent.items()}
+            require_expr(v, f"the constraint for {k}")) for k, v in dependent.items()}
         self._L = self._internal(L, "the Lagrangian L")
         self._phi = {self.q[c]: self._internal(self.constraints[c.diff(self._t)],
                                                f"the constraint {_name(c)}dot = phi")
@@ -299,9 +228,9 @@ class ChaplyginSystem:
             raise ModelError(f"{what} contains the symbol {clash[0]}, which has the name of a "
                              "coordinate or velocity; rename it (the derivation uses plain "
                              "symbols for q and qdot)")
-        _check_values(expr, what)
+        check_values(expr, what)
         e = substitute(expr, self._to_internal)        # xreplace, each shared node once
-        nodes = _nodes(e)                  # one walk for the tests below, not one each
+        nodes = subexpressions(e)                  # one walk for the tests below, not one each
         for d in sorted((n for n in nodes if isinstance(n, sp.Derivative)), key=sp.default_sort_key):
             raise ModelError(f"{what} contains {d.xreplace(self._to_public)}, which is not "
                              "a velocity or acceleration of a listed coordinate")
@@ -333,7 +262,7 @@ class ChaplyginSystem:
             if self._L.has(s):
                 L = self._free_of(self._L, s, "L")
                 if L is None:
-                    raise ModelError(f"L depends on the dependent coordinate {_readable(s)} "
+                    raise ModelError(f"L depends on the dependent coordinate {readable(s)} "
                                      "(Chaplygin condition, 1.3: L must be free of the "
                                      "dependent coordinates q_(ε+β))")
                 self._L = L
@@ -507,7 +436,7 @@ class ChaplyginSystem:
         C = sp.Matrix([[self._d(f, self.qd[c]).xreplace(sub) for c in deps] for f in fs])
         acc, memo = self._accelerations(), {}
         E = sp.Matrix([substitute(self._dt(P), acc, memo) for P in self._dLdqdep_tilde()])
-        lam = C.T.LUsolve(-E)
+        lam = solve_with_regular_poles(C.T, -E)   # poles only where C.T is singular
         return [self.to_public(v) for v in lam]
 
     @guarded("generating the numeric right-hand side")
@@ -581,7 +510,7 @@ class ChaplyginSystem:
                                  r, self._sample_time, seed=10)
                 if not chk.holds:
                     raise ModelError(
-                        f"the constraint {_name(c)}' = {_readable(self.constraints[c.diff(self._t)])}"
+                        f"the constraint {_name(c)}' = {readable(self.constraints[c.diff(self._t)])}"
                         " (a prime: d/dt) is not "
                         "homogeneous of degree one in the independent velocities: (1.10) fails: "
                         "the energy (1.11) is not guaranteed to be conserved, and the "
@@ -712,7 +641,7 @@ class ChaplyginSystem:
     def _rewritten_note(self):
         if not self._rewritten:
             return ""
-        return ("; ".join(f"{what} is written with the dependent coordinate {_readable(s)} "
+        return ("; ".join(f"{what} is written with the dependent coordinate {readable(s)} "
                           "but does not depend on it: those terms are rewritten free of it "
                           "(shown as given = rewritten, equal by the check)" for what, s, _, _ in
                           self._rewritten))

@@ -213,6 +213,46 @@ def test_roller_racer_solved_velocities_have_no_pole_where_the_matrix_is_regular
     assert S.verify().ok and S.reduce(th).verify().ok
 
 
+def lagrange_multipliers(L, coords, coneqs, point):
+    """The multipliers of ``LagrangesMethod`` at ``point`` in the sign of its ``eom``
+    (d/dt dL/dqdot - dL/dq + lambda df/dqdot, that of ``multipliers()``): minus the last
+    entries of its full system's solution (mass_matrix_full carries the opposite sign),
+    solved numerically at 40 digits."""
+    lm = me.LagrangesMethod(L, coords, nonhol_coneqs=coneqs)
+    lm.form_lagranges_equations()
+    MM, F = lm.mass_matrix_full, lm.forcing_full
+    with mpmath.workdps(DIGITS):
+        A = mpmath.matrix([[_n(e, point) for e in MM.row(i)] for i in range(MM.rows)])
+        b = mpmath.matrix([_n(e, point) for e in F])
+        sol = mpmath.lu_solve(A, b)
+        return [-sol[2 * len(coords) + i] for i in range(len(coneqs))]   # (negated at 40 digits)
+
+
+def test_roller_racer_multipliers_have_no_pole_where_the_matrix_is_regular():
+    """The multipliers solve C^T lambda = -E, C the (non-diagonal) coefficients of the
+    dependent velocities: LU pivoted on sin(theta) and gave nan at theta = 0 (seen failing);
+    solved fraction-free in C alone, they are finite there and equal LagrangesMethod's."""
+    system, (x, y, th, ph), _, params = roller_racer()
+    S = wt.ChaplyginSystem.from_system(system)
+    xd, yd, thd, phd = (c.diff(t) for c in (x, y, th, ph))
+    m1, m2, I1, I2, d1, d2, k = params
+    v = (d1 * sp.cos(ph) * thd - d2 * (thd + phd)) / sp.sin(ph)
+    hand = {xd: v * sp.cos(th), yd: v * sp.sin(th)}
+    lam = S.multipliers()
+    rng = random.Random(37)
+    coords = [th, ph, x, y]
+    for theta in (sp.S.Zero, sp.pi, None):
+        pt = _random_point(rng, coords, hand, params, {} if theta is None else {th: theta})
+        vals = _values(pt, coords, params)
+        for key, phi in hand.items():        # exactly on the constraints, not to 16 digits
+            vals[key] = phi.xreplace(vals)
+        want = lagrange_multipliers(S.lagrangian, coords, list(S._coneqs), vals)
+        with mpmath.workdps(DIGITS):
+            for got, w in zip(lam, want):
+                g = _n(got, vals)
+                assert abs(g - w) <= mpmath.mpf(10)**-30 * max(1, abs(w)), (theta, g, w)
+
+
 def test_non_diagonal_constraints_solved_without_pivot_denominators():
     """solved_velocities on its own: a lower-triangular matrix whose LU pivots are its
     diagonal, and a full one whose first pivot is sin(theta) but whose determinant is 1."""

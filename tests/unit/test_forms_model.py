@@ -40,6 +40,24 @@ def test_not_chaplygin_is_accepted_and_named():
     assert "constraint for ydot depends on the dependent coordinate y" in S2.why_not_chaplygin
 
 
+def test_chaplygin_type_is_decided_on_the_dependence_not_the_spelling():
+    """A sin(x)**2 + A cos(x)**2 (as ``me.Lagrangian`` writes a symmetric disk's spin term
+    with its angle) does not depend on the dependent coordinate x: the system is of
+    Chaplygin type (a syntactic ``has`` said it was not); a term that does depend on x is
+    still named."""
+    psi, phi = dynamicsymbols("psi phi")
+    A, C, R = sp.symbols("A C R", positive=True)
+    spin = A * sp.sin(x)**2 * phi.diff(t)**2 + A * sp.cos(x)**2 * phi.diff(t)**2
+    Lq = m / 2 * (x.diff(t)**2 + y.diff(t)**2) + spin / 2 + C / 2 * psi.diff(t)**2
+    rolling = {x.diff(t): R * phi.diff(t) * sp.cos(th), y.diff(t): R * phi.diff(t) * sp.sin(th)}
+    Lq = Lq + J / 2 * th.diff(t)**2
+    S = NonholonomicSystem(Lq, [th, phi, psi, x, y], dependent=rolling)
+    assert S.why_not_chaplygin is None and S.is_chaplygin
+    Sx = NonholonomicSystem(Lq + k * sp.sin(x) * psi.diff(t), [th, phi, psi, x, y],
+                            dependent=rolling)
+    assert "dependent coordinate x" in Sx.why_not_chaplygin
+
+
 @pytest.mark.parametrize("kwargs, words", [
     (dict(dependent={y.diff(t): x.diff(t)**2}), "not homogeneous of degree one"),
     (dict(dependent={y.diff(t): x.diff(t) + 1}), "not homogeneous of degree one"),

@@ -53,7 +53,7 @@ from ..coordinates import name as _name, sign_assumptions
 from ..dag import along, diff, substitute, zeroed
 from ..errors import ModelError, ModelTypeError, guarded
 from ..linear import lu_solve
-from ..system import _check_coordinates, _check_values, _nodes, _readable, _require_expr
+from ..inputs import check_coordinates, check_values, readable, require_expr, subexpressions
 from ..verify import DPS, At, Unevaluable, check_zero
 
 __all__ = ["NonholonomicSystem", "from_mechanics"]
@@ -96,7 +96,7 @@ class NonholonomicSystem:
                 raise ModelError("give the constraints once: constraints= or nonhol_coneqs=")
             constraints = nonhol_coneqs
         self.name = name or "system"
-        self.coordinates = _check_coordinates(coordinates)
+        self.coordinates = check_coordinates(coordinates)
         self._t = self.coordinates[0].args[0]
         self.rationalized = {}
         ex = (lambda e: exact_rationals(e, self.rationalized) if isinstance(e, sp.Basic) else e)
@@ -130,9 +130,9 @@ class NonholonomicSystem:
         if not self.independent_coordinates:
             raise ModelError("every velocity is dependent: at least one independent velocity "
                              "is needed (n - g >= 1)")
-        self.lagrangian = ex(_require_expr(lagrangian, "the Lagrangian L"))
+        self.lagrangian = ex(require_expr(lagrangian, "the Lagrangian L"))
         self._L = self._internal(self.lagrangian, "the Lagrangian L")
-        self.constraints = {c.diff(self._t): ex(_require_expr(solved[c.diff(self._t)],
+        self.constraints = {c.diff(self._t): ex(require_expr(solved[c.diff(self._t)],
                                                               f"the constraint for {_name(c)}dot"))
                             for c in self.dependent_coordinates}
         self._phi = {c: self._internal(self.constraints[c.diff(self._t)],
@@ -185,9 +185,9 @@ class NonholonomicSystem:
         if clash:
             raise ModelError(f"{what} contains the symbol {clash[0]}, which has the name of a "
                              "coordinate or velocity; rename it")
-        _check_values(expr, what)
+        check_values(expr, what)
         e = substitute(expr, self._to_internal)
-        nodes = _nodes(e)
+        nodes = subexpressions(e)
         for d in sorted((n for n in nodes if isinstance(n, sp.Derivative)), key=sp.default_sort_key):
             raise ModelError(f"{what} contains {d.xreplace(self._to_public)}, which is not a "
                              "velocity of a listed coordinate")
@@ -238,7 +238,7 @@ class NonholonomicSystem:
             chk = check_zero("model", "Euler's relation", res, self.sample, seed=3)
             if not chk.holds:
                 raise ModelError(
-                    f"the constraint {_name(c)}' = {_readable(self.constraints[c.diff(self._t)])}"
+                    f"the constraint {_name(c)}' = {readable(self.constraints[c.diff(self._t)])}"
                     " is not homogeneous of degree one in the velocities (Euler's relation "
                     "fails): the model takes linear constraints A(q) qdot = 0 and Chetaev "
                     "constraints homogeneous of degree one")
@@ -254,15 +254,29 @@ class NonholonomicSystem:
 
     @property
     def why_not_chaplygin(self):
-        """None for a system of Chaplygin type; else the condition (1.3) that fails."""
+        """None for a system of Chaplygin type; else the condition (1.3) that fails.
+
+        Decided on what L and the constraints are, not on how they are written: an
+        expression that contains a dependent coordinate s but whose derivative in s is
+        zero (the checks' exact-or-numeric zero test, as ``ChaplyginSystem`` decides it:
+        A sin(psi)**2 + A cos(psi)**2) does not depend on s."""
+        if "why_not" not in self._cache:
+            self._cache["why_not"] = self._why_not_chaplygin()
+        return self._cache["why_not"]
+
+    def _depends_on(self, expr, s):
+        return expr.has(s) and not check_zero("1.3", "", self._d(expr, s), self.sample,
+                                              seed=3).holds
+
+    def _why_not_chaplygin(self):
         dep_q = [self.q[c] for c in self.beta]
         for c in self.beta:
-            if self._L.has(self.q[c]):
+            if self._depends_on(self._L, self.q[c]):
                 return (f"L depends on the dependent coordinate {_name(c)} (Chaplygin "
                         "condition, 1.3: L must be free of the dependent coordinates)")
         for c, phi in self._phi.items():
             for s in dep_q:
-                if phi.has(s):
+                if self._depends_on(phi, s):
                     return (f"the constraint for {_name(c)}dot depends on the dependent "
                             f"coordinate {s} (Chaplygin condition, 1.3)")
         return None
