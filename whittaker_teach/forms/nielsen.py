@@ -63,7 +63,7 @@ class _Projected(Form):
         S, T = self.system, self.system.kinetic
         lag = [add(S.rate(S._d(T, S.qd[c])), -S._d(T, S.q[c]), -Q)
                for c, Q in zip(S.coordinates, S.forces())]
-        return check_identity(self.label, f"[{self.label}] is Lagrange's expression "
+        return check_identity(f"{self.label}s", "each is Lagrange's expression "
                               r"$\frac{d}{dt}\frac{\partial T}{\partial\dot q_s} - "
                               r"\frac{\partial T}{\partial q_s} - Q_s$ of every coordinate",
                               self._full(), lag, S.sample, seed=7)
