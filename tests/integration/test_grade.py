@@ -267,48 +267,95 @@ def test_every_solution_notebook_gets_full_marks_in_the_sandbox(tmp_path):
     assert {r.submission for r in rows} == {Path(p).name for p in paths}
 
 
+def run_processes(run):
+    """The processes the grader run ``run`` (its pid) started that are still there: the
+    sandbox marks them WHITTAKER_TEACH_RUN=<run> (never every process of a sandbox uid:
+    another grader may be running at the same time)."""
+    mark, out = f"WHITTAKER_TEACH_RUN={run}".encode(), []
+    for pid in os.listdir("/proc"):
+        try:
+            if pid.isdigit():
+                with open(f"/proc/{pid}/environ", "rb") as f:
+                    if mark in f.read().split(b"\0"):
+                        out.append(pid)
+        except OSError:
+            pass
+    return out
+
+
+def groups_of(run):
+    """The cgroups the grader run ``run`` made that are still there."""
+    found = []
+    for top in ("/sys/fs/cgroup", ):
+        for d, dirs, _ in os.walk(top):
+            found += [os.path.join(d, x) for x in dirs if x.startswith(f"wt-grade-{run}-")]
+            if d.count("/") > 8:
+                dirs[:] = []
+    return found
+
+
+@pytest.mark.parametrize("signal_name", ["SIGINT", "SIGTERM"])
 def test_an_interrupted_batch_keeps_its_rows_and_leaves_nothing_running(tmp_path,
-                                                                         package_path):
-    """Ctrl-C while notebooks run: the rows graded so far stay in the CSV, no new run starts
-    and the running ones are killed with every process they started."""
+                                                                         package_path,
+                                                                         signal_name):
+    """Ctrl-C (SIGINT) or SIGTERM while notebooks run: the rows graded so far stay in the
+    CSV, the Moodle worksheet and the identity report are written for the students graded
+    so far, no new run starts, and the running ones are killed with every process they
+    started; no cgroup and no temporary folder of the run is left."""
     import signal
     import time
 
     from whittaker_teach.grading import sandbox
     if sandbox.available():
         pytest.skip(sandbox.available())
-    (tmp_path / "essay.ipynb").write_text("not a notebook", encoding="utf-8")
-    for i in range(4):
-        _notebook(tmp_path / f"loop{i}.ipynb", ["import subprocess, time\n"
-                                                "subprocess.Popen(['sleep', '600'])\n"
-                                                "while True:\n    time.sleep(1)"])
+    subs, tmp = tmp_path / "subs", tmp_path / "tmp"
+    tmp.mkdir()
+    start = "from whittaker_teach.exercises import check"
+    loop = ["import subprocess, time\nsubprocess.Popen(['sleep', '600'])\n"
+            "while True:\n    time.sleep(1)"]
+    # graded in this order, two at a time: Eve's run and Jane's start, Jane is graded, the
+    # signal comes while Eve's and Vic's runs go on
+    for folder, cells in (("Eve 111111_222222_assignsubmission_file", loop),
+                          ("Jane Doe_123456_assignsubmission_file", [start]),
+                          ("Vic Tim_111111_assignsubmission_file", loop)):
+        (subs / folder).mkdir(parents=True)
+        _notebook(subs / folder / "kepler.ipynb", [*cells, *_checks(RIGHT)])
+    worksheet = Path(__file__).resolve().parents[1] / "fixtures" / "lms" / \
+        "moodle-worksheet.csv"
     out = tmp_path / "g.csv"
-    proc = subprocess.Popen([sys.executable, "-m", "whittaker_teach", "grade", "--out",
-                             str(out), "--cell-timeout", "60", *sorted(
-                                 str(p) for p in tmp_path.glob("*.ipynb"))],
+    proc = subprocess.Popen([sys.executable, "-m", "whittaker_teach", "grade", "--exercise",
+                             EX, "--moodle", str(worksheet), "--moodle-out",
+                             str(tmp_path / "m.csv"), "--out", str(out), "--cell-timeout",
+                             "60", "--jobs", "2", "--quiet", str(subs)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            env={**os.environ, "PYTHONPATH": package_path})
-    time.sleep(6)
-    proc.send_signal(signal.SIGINT)
-    _, err = proc.communicate(timeout=60)
-    assert proc.returncode == 130 and "interrupted" in err, err
-    rows = list(csv.reader(open(out, encoding="utf-8")))
-    assert rows[0][0] == "submission" and rows[1][0] == "essay.ipynb"
-
-    def left():
-        out = []
-        for d in os.listdir("/proc"):
-            try:
-                if d.isdigit() and sandbox.UID_BASE <= os.stat(f"/proc/{d}").st_uid \
-                        < sandbox.UID_BASE + 64:
-                    out.append(d)
-            except OSError:
-                pass
-        return out
+                            env={**os.environ, "PYTHONPATH": package_path, "TMPDIR": str(tmp)})
+    end = time.monotonic() + 120            # until Jane is graded (the loops never end)
+    while time.monotonic() < end and not (out.exists() and "Jane Doe" in out.read_text()):
+        time.sleep(0.5)
+    time.sleep(2)
+    assert run_processes(proc.pid), "no run was going on when the signal was sent"
+    proc.send_signal(getattr(signal, signal_name))
+    stdout, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and "interrupted" in err, (stdout, err)
+    assert "keyrings:" in stdout and "memory:" in stdout        # the limits, printed first
+    rows = list(csv.DictReader(open(out, encoding="utf-8")))
+    assert {r["submission"].split("/")[0] for r in rows} == {
+        "Jane Doe_123456_assignsubmission_file"} and all(r["ok"] == "True" for r in rows)
+    moodle = {r["Identifier"]: r for r in csv.DictReader(open(tmp_path / "m.csv",
+                                                             encoding="utf-8"))}
+    assert moodle["Participant 123456"]["Grade"] == "100.00"
+    assert moodle["Participant 222222"]["Grade"] == ""
+    report = {r["student_id"]: r for r in csv.DictReader(open(tmp_path / "g-identities.csv",
+                                                              encoding="utf-8"))}
+    assert report["123456"]["status"] == "graded"
+    for sid in ("222222", "111111"):
+        assert report[sid]["status"] == "not-graded" and "interrupted" in \
+            report[sid]["detail"], report[sid]
     for _ in range(100):            # killed processes take a moment to be reaped
-        if not left():
+        if not run_processes(proc.pid):
             break
         time.sleep(0.1)
+
     def described(pids):
         out = []
         for pid in pids:
@@ -318,7 +365,9 @@ def test_an_interrupted_batch_keeps_its_rows_and_leaves_nothing_running(tmp_path
             except OSError:
                 out.append((pid, "(gone)"))
         return out
-    assert left() == [], described(left())
+    assert run_processes(proc.pid) == [], described(run_processes(proc.pid))
+    assert groups_of(proc.pid) == []
+    assert os.listdir(tmp) == []                # its package copy and submission folders
 
 
 def test_an_assignment_graded_with_a_roster_into_moodle_and_canvas(tmp_path, package_path):

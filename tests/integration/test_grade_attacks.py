@@ -85,6 +85,32 @@ for top, dirs, files in os.walk("/"):
 '''
 
 
+KEYRINGS = '''
+import ctypes
+libc = ctypes.CDLL(None, use_errno=True)
+libc.syscall.restype = ctypes.c_long
+ADD, REQUEST, KEYCTL = {"x86_64": (248, 249, 250), "aarch64": (217, 218, 219)}[os.uname().machine]
+RINGS = (-4, -5, -3)            # the uid's user and user-session keyrings, the session keyring
+'''
+# one submission stores a key in every keyring it has; the next (the same uid, as soon as
+# the first gives it back) looks for it there, and for the session keyring it inherits
+KEY_STORE = KEYRINGS + '''
+found = [r for r in (libc.syscall(ADD, b"user", b"wt-attack", b"TOPSECRET-7f3a", 14, ring)
+                     for ring in RINGS) if r > 0]
+'''
+KEY_READ = KEYRINGS + '''
+found = []
+for _ in range(20):
+    found += [r for r in (libc.syscall(KEYCTL, 10, ring, b"user", b"wt-attack", 0)
+                          for ring in RINGS) if r > 0]                      # KEYCTL_SEARCH
+    found += [r for r in [libc.syscall(REQUEST, b"user", b"wt-attack", None, 0)] if r > 0]
+    found += [r for r in [libc.syscall(KEYCTL, 0, -3, 0)] if r > 0]   # its session keyring
+    if found:
+        break
+    time.sleep(0.5)
+'''
+
+
 def notebook(path, cells):
     nb = nbformat.v4.new_notebook()
     nb.metadata["whittaker_teach"] = {"exercise": EX}
@@ -130,6 +156,9 @@ def make_class(folder, outside):
         "solver.ipynb": ([START, "import whittaker_teach as wt\nk = wt.examples.kepler()",
                           "import whittaker_teach.reduction"], none),
         "hunt-solutions.ipynb": ([START, HUNT_ANSWERS, steal("found")], wrong),
+        # kernel keyrings: a key stored for a later student, an inherited session keyring
+        "keyring-a-store.ipynb": ([START, KEY_STORE, steal("found")], wrong),
+        "keyring-b-read.ipynb": ([START, KEY_READ, steal("found")], wrong),
         # secrets
         "secrets.ipynb": ([START, checks(RIGHT, ["L_star"]),
                            f"check({EX!r}, os.environ.get('WT_GRADER_SECRET', 'nothing'), "
@@ -179,19 +208,36 @@ def make_class(folder, outside):
     deep = '{"cells": ' + "[" * 100_000 + "]" * 100_000 + ', "nbformat": 4}'
     (folder / "deep.ipynb").write_text(deep, encoding="utf-8")
     expected["deep.ipynb"] = None
+    # a name that is not UTF-8 (a zip extracted with another encoding): an honest student
+    notebook(os.fsdecode(os.fsencode(folder) + b"/caf\xe9.ipynb"), [START, checks(RIGHT)])
+    expected["caf\\xe9.ipynb"] = right
+    # the solutions, reached through a folder link, a file link or a hard link: each would
+    # be graded right if the grader followed it
+    solutions = outside / "solutions"
+    solutions.mkdir()
+    notebook(solutions / "kepler-orbit.ipynb", [START, checks(RIGHT)])
+    (folder / "linked").symlink_to(solutions)
+    (folder / "link.ipynb").symlink_to(solutions / "kepler-orbit.ipynb")
+    os.link(solutions / "kepler-orbit.ipynb", folder / "hard.ipynb")
+    for name in ("linked", "link.ipynb", "hard.ipynb", "kepler-orbit.ipynb"):
+        expected[name] = None
     return expected
 
 
-def sandbox_processes():
-    """Processes on this machine running as a sandbox uid."""
+def run_processes(run=None):
+    """Processes on this machine started by the grader run ``run`` (a pid; default: this
+    process): their environment holds WHITTAKER_TEACH_RUN=<run>, which the sandbox sets.
+    (Not every process of a sandbox uid: another grader may be running at the same time.)"""
+    mark = f"WHITTAKER_TEACH_RUN={run or os.getpid()}".encode()
     out = []
     for pid in os.listdir("/proc"):
         if pid.isdigit():
             try:
-                uid = os.stat(f"/proc/{pid}").st_uid
+                with open(f"/proc/{pid}/environ", "rb") as f:
+                    env = f.read().split(b"\0")
             except OSError:
                 continue
-            if sandbox.UID_BASE <= uid < sandbox.UID_BASE + 64:
+            if mark in env:
                 out.append(pid)
     return out
 
@@ -208,7 +254,7 @@ def _settled(find, seconds=10):
 def groups_left():
     """The cgroups this process made for its sandboxes that are still there."""
     found = []
-    for top in ("/sys/fs/cgroup/memory", "/sys/fs/cgroup/pids"):
+    for top in ("/sys/fs/cgroup", ):           # v1 (memory, pids, cpu) and v2 alike
         for d, dirs, _ in os.walk(top):
             found += [x for x in dirs if x.startswith(f"wt-grade-{os.getpid()}-")]
             if d.count("/") > 8:
@@ -276,7 +322,8 @@ def _grade_the_class(tmp):
     os.environ["WHITTAKER_TEACH_COLLECT"] = str(tmp / "collected.json")
     os.environ["WHITTAKER_TEACH_CHECK_LOG"] = str(tmp / "check-log.jsonl")
     try:
-        paths = sorted(str(p) for p in folder.iterdir())
+        paths = sorted(str(p) for p in folder.iterdir()) + [str(folder / "linked" /
+                                                               "kepler-orbit.ipynb")]
         out = tmp / "grades.csv"
         rows, line = grading.grade(paths, str(out), feedback=str(tmp / "feedback"), jobs=2,
                                    cell_timeout=20, timeout=60, memory=MEMORY_MB, disk=DISK_MB,
@@ -296,7 +343,7 @@ def _grade_the_class(tmp):
     return {"expected": expected, "got": got, "table": table, "out": str(out), "tmp": str(tmp),
             "outside": str(outside), "accepted": [a.decode() for a in accepted],
             "before_dev": sorted(before_dev), "feedback": str(tmp / "feedback"),
-            "left": _settled(sandbox_processes), "line": line,
+            "left": _settled(run_processes), "line": line,
             "cgroups": sandbox.cgroup_limits(),
             "groups_left": groups_left()}
 
@@ -389,4 +436,26 @@ def test_the_gradebook_has_points_and_totals(batch):
     assert book["wrong.ipynb"]["total"] == "0"
     assert book["log-brackets.ipynb"]["kepler-orbit:L_star"] == f"{pts['L_star']:g}"
     assert book["log-brackets.ipynb"]["total"] == f"{pts['L_star']:g}"
-    assert json.dumps(batch["line"]).startswith('"21 submissions')
+    assert json.dumps(batch["line"]).startswith(f'"{len(batch["expected"])} submissions')
+
+
+def test_keyrings_are_out_of_reach(batch):
+    """add_key, request_key and keyctl are denied in the sandbox (seccomp): the key the
+    first stores is never there for the second, nor is any session keyring it inherits."""
+    for name in ("keyring-a-store.ipynb", "keyring-b-read.ipynb"):
+        assert parts_of(batch, name) == batch["expected"][name], batch["got"][name]
+        assert failure_of(batch, name) == "", batch["got"][name]
+
+
+def test_links_and_names_of_any_bytes(batch):
+    """The solutions behind a folder link, a file link or a hard link are never opened;
+    a name that is not UTF-8 is graded like any other."""
+    assert parts_of(batch, "caf\\xe9.ipynb") == batch["expected"]["caf\\xe9.ipynb"]
+    why = {name: failure_of(batch, name) for name in ("linked", "link.ipynb", "hard.ipynb",
+                                                      "kepler-orbit.ipynb")}
+    assert why["linked"].startswith("a symbolic link") and why["link.ipynb"].startswith(
+        "a symbolic link"), why
+    assert why["hard.ipynb"].startswith("a hard link"), why
+    assert "goes through a symbolic link (" in why["kepler-orbit.ipynb"], why
+    for name in why:
+        assert parts_of(batch, name) == {}, batch["got"][name]

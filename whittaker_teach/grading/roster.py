@@ -147,6 +147,14 @@ class Match:
     reason: str = ""
 
     @property
+    def folder(self):
+        """The submissions folder it was found in (``path`` without its ``parts``)."""
+        p = self.path.rstrip("/") if self.parts else self.path
+        for _ in self.parts:
+            p = os.path.dirname(p)
+        return p or "."
+
+    @property
     def name(self):
         """The path as shown in the grades and the report (always valid UTF-8)."""
         return shown("/".join(self.parts)) if self.parts else shown(self.path)

@@ -13,10 +13,14 @@ own Canvas gradebook and Moodle worksheet (:mod:`.exports`).
 
 For each submission:
 
-1. the file is read once, by the grader (not a regular file, a symbolic
-   link, too large, not UTF-8, not JSON, JSON nested deeper than
-   ``MAX_JSON_DEPTH``, truncated, not a notebook, a notebook of another
-   exercise than the assignment's: one row saying so);
+1. the file is opened once, without following a symbolic link at any level
+   of its path, and read (:func:`open_submission`: a link, a hard link,
+   something outside the submissions folder, not a regular file, too large,
+   not UTF-8, not JSON, JSON nested deeper than ``MAX_JSON_DEPTH``: one row
+   saying so); it is then parsed and validated in a child process with at
+   most ``VALIDATE_MEMORY_MB`` and ``VALIDATE_SECONDS`` of CPU (truncated,
+   not a notebook, a notebook of another exercise than the assignment's: one
+   row saying so);
 2. those bytes run from top to bottom in a sandbox of their own
    (:mod:`.sandbox`: bubblewrap, a uid of its own, its own process, network,
    IPC and mount namespaces, one memory and process limit over all its
@@ -38,9 +42,16 @@ each submission is graded, so the rows already graded survive whatever
 happens later; a cell that begins with ``= + - @``, a tab or a carriage
 return gets a leading ``'`` (the OWASP rule against formula injection).
 
-Without the sandbox (not root, no bubblewrap, no namespaces) :func:`grade`
-refuses unless ``unsafe=True`` (``--unsafe``): then each notebook runs as a
-plain process of the grader's user, with only per-process limits.
+``main`` prints, before anything runs, which limits each sandbox has here and
+by what mechanism (:func:`print_limits`).  On Ctrl-C or SIGTERM no new run
+starts, the running ones are killed with everything they started, their
+cgroups and temporary folders removed, and the rows graded so far, the
+identity report and the LMS files are written for the students graded
+before the signal (exit status 130).
+
+Without the sandbox (no bubblewrap, no namespaces) :func:`grade` refuses
+unless ``unsafe=True`` (``--unsafe``): then each notebook runs as a plain
+process of the grader's user, with only per-process limits.
 """
 
 from __future__ import annotations
@@ -48,6 +59,7 @@ from __future__ import annotations
 import csv
 import html
 import json
+import math
 import os
 import queue
 import shutil
@@ -63,13 +75,15 @@ from pathlib import Path
 from .rows import HEADER, Row, cell, num as _num, summary
 
 __all__ = ["Row", "grade", "grade_one", "grade_assignment", "record_line", "read_submission",
-           "cell", "main", "summary", "SandboxUnavailable", "HEADER"]
+           "open_submission", "cell", "main", "summary", "print_limits", "Interrupted",
+           "SandboxUnavailable", "HEADER"]
 
 CELL_TIMEOUT = 60          # seconds per cell
 NOTEBOOK_TIMEOUT = 300     # seconds per notebook
 MEMORY_MB = 3000           # over all the processes of a submission
 PROCESSES = 128            # processes and threads of a submission
 DISK_MB = 200              # its scratch tmpfs
+CPUS = 1.0                 # CPUs' worth of time per period, over all its processes
 MAX_NOTEBOOK_BYTES = 20_000_000
 MAX_JSON_DEPTH = 64
 MAX_LOG_BYTES = 2_000_000
@@ -114,37 +128,90 @@ def _json_depth(text, limit):
     return False
 
 
-def read_submission(path):
+def read_submission(path, folder=None):
     """(what the grader reads of it, None) or (None, why it is not a gradable notebook)."""
-    nb, _, why = _read(path)
+    nb, _, why = _read(path, folder)
     return nb, why
 
 
-def _read(path):
+def _read(path, folder=None):
     """(notebook, its bytes, None) or (None, None, why it cannot be graded)."""
     try:
-        return _read_checked(Path(path))
+        return _read_checked(path, folder)
     except (Exception, RecursionError) as exc:  # noqa: BLE001 - never stop the batch
         return None, None, f"the grader could not read the file ({type(exc).__name__})"
 
 
-def _read_checked(path):
+class _Refused(Exception):
+    """A submission path that is not opened; the message says why."""
+
+
+def open_submission(path, folder=None):
+    """A file descriptor of the regular file at ``path``, opened without following a
+    symbolic link at any level of the path: every folder on the way is opened with
+    ``O_DIRECTORY|O_NOFOLLOW`` relative to the one before (from ``/`` or the working
+    folder), the file with ``O_NOFOLLOW``.  Then, as a second check, the file must lie
+    in ``folder`` (the submissions folder, default: the file's own folder) and have
+    one name only (a hard link is refused).  Raises :class:`_Refused` saying why."""
+    import errno
+    import stat
+    p = os.fspath(path)
+    parts = [c for c in p.split("/") if c not in ("", ".")]
+    if not parts:
+        raise _Refused("not a file")
+    step = os.O_RDONLY | os.O_DIRECTORY | os.O_NOFOLLOW | os.O_CLOEXEC
+    fd = os.open("/" if p.startswith("/") else ".", step)
+    try:
+        for i, c in enumerate(parts):
+            last = i == len(parts) - 1
+            flags = (os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK | os.O_CLOEXEC) if last \
+                else step
+            try:
+                nfd = os.open(c, flags, dir_fd=fd)
+            except OSError as exc:
+                try:
+                    link = stat.S_ISLNK(os.lstat(c, dir_fd=fd).st_mode)
+                except OSError:
+                    link = False
+                if link or exc.errno == errno.ELOOP:
+                    where = "/".join(parts[:i + 1])
+                    raise _Refused(("a symbolic link, not a notebook (hand in the .ipynb file "
+                                    "itself)") if last else (
+                        f"its path goes through a symbolic link ({shown_path(where)}), "
+                        "which the grader does not follow")) from None
+                if exc.errno in (errno.ENOENT, errno.ENOTDIR):
+                    raise _Refused("not found") from None
+                raise
+            os.close(fd)
+            fd = nfd
+        st = os.fstat(fd)
+        if not stat.S_ISREG(st.st_mode):
+            raise _Refused("not a file")
+        if st.st_nlink > 1:
+            raise _Refused(f"a hard link (the file has {st.st_nlink} names): hand in a copy")
+        real = os.readlink(f"/proc/self/fd/{fd}") if os.path.isdir("/proc/self/fd") else None
+        top = os.path.realpath(folder if folder is not None else os.path.dirname(p) or ".")
+        if real is not None and not real.startswith(top.rstrip("/") + "/"):
+            raise _Refused("it lies outside the submissions folder")
+    except BaseException:
+        os.close(fd)
+        raise
+    return fd
+
+
+def _read_checked(path, folder=None):
     import stat
     try:
-        st = os.lstat(path)
-    except OSError:
-        return None, None, "not found"
-    if stat.S_ISLNK(st.st_mode):
-        return None, None, "a symbolic link, not a notebook (hand in the .ipynb file itself)"
-    if not stat.S_ISREG(st.st_mode):
-        return None, None, "not a file"
-    if st.st_size > MAX_NOTEBOOK_BYTES:
-        return None, None, (f"the file is {st.st_size // 1_000_000} MB; a notebook of at most "
-                            f"{MAX_NOTEBOOK_BYTES // 1_000_000} MB is expected")
-    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0))
+        fd = open_submission(path, folder)
+    except _Refused as exc:
+        return None, None, str(exc)
     with os.fdopen(fd, "rb") as f:
-        if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):
+        st = os.fstat(f.fileno())
+        if not stat.S_ISREG(st.st_mode):
             return None, None, "not a file"
+        if st.st_size > MAX_NOTEBOOK_BYTES:
+            return None, None, (f"the file is {st.st_size // 1_000_000} MB; a notebook of at "
+                                f"most {MAX_NOTEBOOK_BYTES // 1_000_000} MB is expected")
         raw = f.read(MAX_NOTEBOOK_BYTES + 1)
     if len(raw) > MAX_NOTEBOOK_BYTES:
         return None, None, "the file is too large for a notebook"
@@ -279,6 +346,7 @@ class Settings:
     processes: int = PROCESSES
     disk_mb: int = DISK_MB
     unsafe: bool = False
+    cpus: float = CPUS
 
 
 _LIVE = set()          # the runs going on (killed if the grader is interrupted)
@@ -299,24 +367,26 @@ def _run(raw, settings, package=None, solvers=True, slot=0):
     """Run one notebook (its bytes): (worker result or None, grader-side failure or '', the
     check log as text)."""
     from . import sandbox
-    lease = None if settings.unsafe else sandbox.UidLease()
+    rootless = sandbox.rootless()
+    lease = None if settings.unsafe or rootless else sandbox.UidLease()
+    # private (mkdtemp: 0700, a name no one can guess): the sandbox sees the notebook only
+    # through a bind mount, so no other local account can list or copy it
     top = Path(tempfile.mkdtemp(prefix="wt-grade-"))
     nb_file = top / "submission.ipynb"
-    nb_file.write_bytes(raw)
-    if lease is not None:
-        # private: the folder can be passed through, not listed; the notebook is readable
-        # by its sandbox's uid alone (no other local account can copy it)
-        os.chmod(top, 0o711)
+    fd = os.open(nb_file, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW, 0o400)
+    with os.fdopen(fd, "wb") as f:
+        f.write(raw)
+    if lease is not None:               # readable by its sandbox's uid alone
         os.chown(nb_file, lease.uid, lease.uid)
-        os.chmod(nb_file, 0o400)
-    limits = sandbox.Limits(settings.memory_mb, settings.processes, settings.disk_mb)
-    groups, hit = None, set()
+    limits = sandbox.Limits(settings.memory_mb, settings.processes, settings.disk_mb,
+                            settings.cpus)
+    groups, hit, seccomp = None, set(), None
     log_r, log_w = os.pipe()
     try:
         if settings.unsafe:
             scratch = top / "scratch"
             scratch.mkdir()
-            env = sandbox.environment(0)
+            env = sandbox.environment(0, os.getpid(), math.ceil(settings.timeout))
             env.pop("WHITTAKER_TEACH_SANDBOX")
             env = {k: v.replace(sandbox.SCRATCH, str(scratch)) for k, v in env.items()}
             import whittaker_teach
@@ -329,8 +399,11 @@ def _run(raw, settings, package=None, solvers=True, slot=0):
         else:
             name = f"wt-grade-{os.getpid()}-{slot}-{time.monotonic_ns()}"
             groups = sandbox.Cgroups.make(name, limits)
-            cmd = sandbox.command(lease.uid, package.path(solvers), nb_file,
-                                  limits, settings.cell_timeout, log_w, groups.procs)
+            seccomp = sandbox.seccomp_fd()
+            cmd = sandbox.command(sandbox.UID_BASE if lease is None else lease.uid,
+                                  package.path(solvers), nb_file, limits,
+                                  settings.cell_timeout, log_w, groups.procs, seccomp,
+                                  run=os.getpid(), cpu_seconds=math.ceil(settings.timeout))
             env, cwd = {"PATH": "/usr/bin:/bin"}, str(top)
         try:
             with _LIVE_LOCK:
@@ -340,10 +413,13 @@ def _run(raw, settings, package=None, solvers=True, slot=0):
                     return None, "the grader was interrupted before this notebook ran", ""
                 proc = subprocess.Popen(cmd, env=env, cwd=cwd, stdin=subprocess.DEVNULL,
                                         stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                        start_new_session=True, pass_fds=(log_w,))
+                                        start_new_session=True, pass_fds=(log_w,) + (
+                                            () if seccomp is None else (seccomp,)))
                 _LIVE.add(proc)
         finally:
             os.close(log_w)
+            if seccomp is not None:
+                os.close(seccomp)
         out, err = _Reader(proc.stdout, sandbox.MAX_RESULT_BYTES), _Reader(proc.stderr, 20_000)
         log = _Reader(os.fdopen(log_r, "rb"), MAX_LOG_BYTES)
         log_r = None
@@ -572,15 +648,16 @@ def _named_exercises(nb):
     return nb.claimed, set(nb.named)
 
 
-def prepare(path, name=None, assignment=None):
+def prepare(path, name=None, assignment=None, folder=None):
     """(name, exercise or None, the notebook's bytes, rows if it cannot be run).
 
     With ``assignment`` (an exercise id) the notebook must be one of that exercise: its
     metadata ``whittaker_teach.exercise``, if any, names it, and its ``check(...)`` calls
-    name no other; it is then graded as that exercise, whatever else it says."""
+    name no other; it is then graded as that exercise, whatever else it says.
+    ``folder``: the submissions folder the file must lie in (:func:`open_submission`)."""
     from whittaker_teach.exercises import exercises
     name = name or Path(path).name
-    nb, raw, why = _read(path)
+    nb, raw, why = _read(path, folder)
     if nb is None:
         return name, None, None, [Row(name, assignment or "", "", False, why, 0, 0)]
     if assignment is not None:
@@ -665,22 +742,36 @@ class _Writer:
             self.f.close()
 
 
+class Interrupted(KeyboardInterrupt):
+    """Ctrl-C or SIGTERM while grading: ``rows`` and ``line`` are what was graded before
+    (in the CSV too), ``graded`` the number of submissions with rows."""
+
+    def __init__(self, rows, line, graded):
+        super().__init__(line)
+        self.rows, self.line, self.graded = rows, line, graded
+
+
 def grade(paths, out, feedback=None, jobs=2, cell_timeout=CELL_TIMEOUT,
           timeout=NOTEBOOK_TIMEOUT, memory=MEMORY_MB, quiet=False, unsafe=False,
           processes=PROCESSES, disk=DISK_MB, gradebook=None, names=None, assignment=None,
-          per_submission=None):
+          per_submission=None, folders=None, cpus=CPUS):
     """Grade the submissions into the CSV ``out``: (rows, summary line).
 
     ``names``: what each submission is called in the CSV (default: its file
     name, or its path where file names repeat); ``assignment``: an exercise
     id every notebook must be of (see :func:`prepare`); ``per_submission``: a
-    list that receives the rows of each submission, in the order of ``paths``.
+    list that receives the rows of each submission, in the order of ``paths``
+    (None for one not graded, after an interrupt); ``folders``: the
+    submissions folder of each path (default: its own folder).
 
     The notebooks run ``jobs`` at a time, each in its own sandbox; their
     recorded answers are checked here, in the main thread (where each check
     has its time budget), as each run ends, and its rows written at once.
     Raises :class:`SandboxUnavailable` when the sandbox cannot be had and
-    ``unsafe`` is not set.
+    ``unsafe`` is not set.  On Ctrl-C (KeyboardInterrupt) no new run starts, the
+    running ones are killed with everything they started, their groups and
+    temporary folders removed, the gradebook written with what was graded, and
+    :class:`Interrupted` raised.
     """
     from . import sandbox
     from .exports import write_gradebook
@@ -691,13 +782,15 @@ def grade(paths, out, feedback=None, jobs=2, cell_timeout=CELL_TIMEOUT,
     for name in ("WHITTAKER_TEACH_CHECK_LOG", "WHITTAKER_TEACH_CHECK_FD",
                  "WHITTAKER_TEACH_COLLECT"):                  # the grader checks, never records
         os.environ.pop(name, None)
-    settings = Settings(cell_timeout, timeout, memory, processes, disk, unsafe)
+    settings = Settings(cell_timeout, timeout, memory, processes, disk, unsafe, cpus)
     paths = [os.fspath(p) for p in paths]
     names = list(names) if names is not None else _names(paths)
+    folders = list(folders) if folders is not None else [None] * len(paths)
     writer = _Writer(out)
-    package = None if unsafe else sandbox.PackageCopy()
+    package = None
     results = {}
     bar = _progress(len(paths), quiet)
+    interrupted = False
 
     def done(i, rows):
         results[i] = rows
@@ -708,9 +801,10 @@ def grade(paths, out, feedback=None, jobs=2, cell_timeout=CELL_TIMEOUT,
             bar.update(1)
 
     try:
+        package = None if unsafe else sandbox.PackageCopy()
         todo = []
         for i, p in enumerate(paths):
-            name, exercise, raw, rows = prepare(p, names[i], assignment)
+            name, exercise, raw, rows = prepare(p, names[i], assignment, folders[i])
             if rows is not None:
                 done(i, rows)
             else:
@@ -744,24 +838,31 @@ def grade(paths, out, feedback=None, jobs=2, cell_timeout=CELL_TIMEOUT,
                     rows = [Row(name, ex, "", False, "the grader could not grade it "
                                 f"({type(exc).__name__}); please report it", 0, 0)]
                 done(i, rows)
-        except BaseException:       # Ctrl-C, say: no new run, and the running ones killed
-            _stop_runs()            # (a thread about to start one finds _STOP set)
-            pool.shutdown(wait=False, cancel_futures=True)
-            raise
-        pool.shutdown()
+        finally:                    # Ctrl-C, say: no new run, the running ones killed (a
+            if sys.exc_info()[0] is not None:   # thread about to start one finds _STOP set)
+                _stop_runs()
+            pool.shutdown(wait=True, cancel_futures=True)   # their sandboxes taken down
+    except KeyboardInterrupt:
+        interrupted = True
     finally:
         writer.close()
         if bar is not None:
             bar.close()
         if package is not None:
             package.close()
-    ordered = [results[i] for i in sorted(results)]
-    rows = [r for rs in ordered for r in rs]
+        sandbox.release()
+    ordered = [results.get(i) for i in range(len(paths))]
+    rows = [r for rs in ordered if rs for r in rs]
     if per_submission is not None:
         per_submission.extend(ordered)
+    graded = [rs for rs in ordered if rs is not None]
     if gradebook:
-        write_gradebook(gradebook, ordered)
-    return rows, summary(rows, len(paths))
+        write_gradebook(gradebook, graded)
+    line = summary(rows, len(graded))
+    if interrupted:
+        raise Interrupted(rows, line + f" (interrupted: {len(paths) - len(graded)} of "
+                          f"{len(paths)} not graded)", len(graded))
+    return rows, line
 
 
 _FEEDBACK_CSS = ("<style>body{font-family:sans-serif;max-width:60em;margin:2em auto;"
@@ -900,11 +1001,20 @@ def grade_assignment(paths, exercise, roster, out, report=None, gradebook=None, 
     if not notebooks:
         raise NothingFound(nothing_found(paths, skipped))
     todo = [m for m in notebooks if m.status == "matched"]
-    per = []
-    rows, line = grade([m.path for m in todo], out, names=[m.name for m in todo],
-                       assignment=exercise, per_submission=per, **kw)
+    per, stopped = [], None
+    try:
+        rows, line = grade([m.path for m in todo], out, names=[m.name for m in todo],
+                           assignment=exercise, per_submission=per,
+                           folders=[m.folder for m in todo], **kw)
+    except Interrupted as exc:      # what was graded is still reported and exported
+        rows, line, stopped = exc.rows, exc.line, exc
     entries, graded, problems = [], {}, 0
     for m, rs_rows in zip(todo, per):
+        if rs_rows is None:
+            problems += 1
+            entries.append(["not-graded", m.name, m.student.id, m.student.name, m.rule,
+                            "the grader was interrupted before this notebook was graded"])
+            continue
         parts = [r for r in rs_rows if r.part]
         if parts:
             graded[m.student.id] = (m, rs_rows)
@@ -956,6 +1066,9 @@ def grade_assignment(paths, exercise, roster, out, report=None, gradebook=None, 
             w.writerow(REPORT_HEADER)
             for e in entries:
                 w.writerow([cell(v) for v in e])
+    if stopped is not None:
+        stopped.outcome = Outcome(rows, line, entries, problems, done)
+        raise stopped
     return Outcome(rows, line, entries, problems, done)
 
 
@@ -966,7 +1079,8 @@ def _points_of(rows):
 
 def _refuse_sandbox(why):
     print(f"grade: refusing to run students' notebooks without the sandbox: {why}.\n"
-          "Run as root on Linux with bubblewrap (make sysdeps), or pass --unsafe to run "
+          "Run on Linux with bubblewrap (make sysdeps), as root or as a user who may make "
+          "user namespaces, or pass --unsafe to run "
           "them as plain processes of your user, with per-process limits only.",
           file=sys.stderr)
     return 2
@@ -999,7 +1113,13 @@ def main(args):
     settings = dict(feedback=opt["feedback"], jobs=args.jobs, cell_timeout=args.cell_timeout,
                     timeout=args.timeout, memory=args.memory, quiet=args.quiet,
                     unsafe=bool(why), gradebook=opt["gradebook"])
+    for k in ("cpus", "processes", "disk"):
+        if getattr(args, k, None) is not None:
+            settings[k] = getattr(args, k)
+    if not why:
+        print_limits(settings)
     start = time.monotonic()
+    restore = _on_signals()
     try:
         if opt["exercise"]:
             out = _main_assignment(paths, args, opt, settings)
@@ -1017,12 +1137,19 @@ def main(args):
             files = [m.path for m in notebooks]
             names = _names(files) if all(len(m.parts) <= 1 for m in notebooks) else \
                 [m.name for m in notebooks]
-            _, line = grade(files, args.out, names=names, **settings)
+            _, line = grade(files, args.out, names=names,
+                            folders=[m.folder for m in notebooks], **settings)
             code, extra = 0, []
-    except KeyboardInterrupt:
-        print(f"\ngrade: interrupted; the submissions graded so far are in {args.out}",
-              file=sys.stderr)
+    except KeyboardInterrupt as exc:
+        outcome = getattr(exc, "outcome", None)
+        print(f"\ngrade: interrupted; the submissions graded so far are in {args.out}"
+              + (f" ({exc.line})" if isinstance(exc, Interrupted) else ""), file=sys.stderr)
+        for x in (outcome.exports if outcome is not None else []):
+            print(f"grade: {x} (the students graded before the interrupt)", file=sys.stderr)
         return 130
+    finally:
+        restore()
+        sandbox.release()
     took = time.monotonic() - start
     print(f"{line} ({took:.0f} s); grades in {args.out}"
           + (f", feedback in {opt['feedback']}" if opt["feedback"] else ""))
@@ -1031,6 +1158,44 @@ def main(args):
     if why:
         print(f"(UNSAFE: the notebooks ran without the sandbox: {why})")
     return code
+
+
+def print_limits(settings, file=None):
+    """Print what limits each sandbox will have here, and by what mechanism."""
+    from . import sandbox
+    limits = sandbox.Limits(settings.get("memory", MEMORY_MB),
+                            settings.get("processes", PROCESSES), settings.get("disk", DISK_MB),
+                            settings.get("cpus", CPUS))
+    lines = sandbox.enforced(limits, settings.get("timeout", NOTEBOOK_TIMEOUT))
+    width = max(len(k) for k, _ in lines)
+    print("grade: each notebook runs in a sandbox of its own with these limits:",
+          file=file or sys.stdout)
+    for k, v in lines:
+        print(f"  {k + ':':<{width + 1}} {v}", file=file or sys.stdout)
+    (file or sys.stdout).flush()
+
+
+def _on_signals():
+    """SIGTERM (and SIGINT) raise KeyboardInterrupt in the main thread, once: a second
+    signal while the grader writes what it has and takes the sandboxes down is ignored.
+    Returns a function that puts the old handlers back."""
+    import signal
+    if threading.current_thread() is not threading.main_thread():
+        return lambda: None
+    fired = []
+
+    def handler(signum, frame):
+        if not fired:
+            fired.append(signum)
+            raise KeyboardInterrupt
+        print("grade: still writing the grades and stopping the sandboxes ...",
+              file=sys.stderr)
+    old = {sig: signal.signal(sig, handler) for sig in (signal.SIGINT, signal.SIGTERM)}
+
+    def restore():
+        for sig, h in old.items():
+            signal.signal(sig, h)
+    return restore
 
 
 def _main_assignment(paths, args, opt, settings):

@@ -49,8 +49,11 @@ def _worker_main(argv):
     resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
     resource.setrlimit(resource.RLIMIT_FSIZE, (disk * 1024 * 1024,) * 2)
     resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
-    if os.environ.get("WHITTAKER_TEACH_SANDBOX"):   # a uid of its own: count its processes
+    if os.environ.get("WHITTAKER_TEACH_NPROC") == "1":    # its processes alone are counted
         resource.setrlimit(resource.RLIMIT_NPROC, (pids, pids))
+    cpu = os.environ.get("WHITTAKER_TEACH_CPU_SECONDS", "")
+    if cpu.isdigit() and int(cpu) > 0:          # CPU time per process (every process)
+        resource.setrlimit(resource.RLIMIT_CPU, (int(cpu), int(cpu) + 5))
     for d in ("home", "tmp", ".grade", ".jupyter/runtime", ".ipython", ".matplotlib"):
         (scratch / d).mkdir(parents=True, exist_ok=True)
     home = scratch / "home"
