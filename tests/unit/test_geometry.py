@@ -213,6 +213,32 @@ def test_sledge_multiplier_hamiltonises():
     assert _zero(geo.divergence(F, nb.coordinates) - sp.tan(th) * nb.p[1] / J)
 
 
+def test_multiplier_density_exponent_is_eps_minus_1_for_eps_3():
+    # [13.8] beyond eps = 2: a bracket whose rescaling by an arbitrary N(q) is canonical
+    # ({P, P}' = 0 in [13.7]) has C = (p_tau dN/dq_sigma - p_sigma dN/dq_tau)/N; with
+    # H = H*(q, N p) its field has the invariant density N^(eps-1) and not N^(eps-2), N^eps
+    q, p, P = sp.symbols("q_1:4"), sp.symbols("p_1:4"), sp.symbols("P_1:4")
+    N, V = sp.Function("N")(*q), sp.Function("V")(*q)
+    a = [sp.Function(f"a_{i}")(*q) for i in (1, 2, 3)]
+    Pi = sp.zeros(6, 6)
+    for i in range(3):
+        Pi[i, 3 + i], Pi[3 + i, i] = 1, -1
+        for j in range(3):
+            Pi[3 + i, 3 + j] = (p[j] * N.diff(q[i]) - p[i] * N.diff(q[j])) / N
+    br = geo.AlmostPoisson(list(q) + list(p), Pi)
+    H_star = sum(ai * Pi_**2 for ai, Pi_ in zip(a, P)) / 2 + V
+    at = {Pi_: N * pi for Pi_, pi in zip(P, p)}
+    F = br.vector_field(H_star.xreplace(at))
+    # F is N times Hamilton's equations of H* in (q, P = N p)
+    Ndot = sum(N.diff(qi) * F[i] for i, qi in enumerate(q))
+    for i in range(3):
+        assert _zero(F[i] - N * H_star.diff(P[i]).xreplace(at))
+        assert _zero(Ndot * p[i] + N * F[3 + i] + N * H_star.diff(q[i]).xreplace(at))
+    div = {k: sp.simplify(geo.divergence([N**k * f for f in F], br.coordinates)) for k in (1, 2, 3)}
+    assert div[2] == 0
+    assert div[1] != 0 and div[3] != 0
+
+
 def test_position_density_sledge_and_sleigh():
     s = geo.position_density(geo.nonholonomic_bracket(wt.examples.sledge()))
     th = sp.Symbol("theta", real=True)
