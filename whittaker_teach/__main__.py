@@ -11,8 +11,8 @@ Commands::
     bench derivation --scale [--n 2..8] [--family F] [--no-memory] [--repeat N]
                                   the same for families of n coordinates: a table of
                                   reduce, verify and peer times and peak memory;
-                                  --family chain: the sleighs against LagrangesMethod
-                                  and KanesMethod
+                                  --family chain, rotors, coins or all: families of
+                                  vehicles against LagrangesMethod and KanesMethod
     bench numerics [--quick] [--json FILE] [--csv FILE] [--plot FILE] [--quiet]
                                   speed against error: the full, reduced and exact
                                   models of the sledge (whittaker_teach.numerics)
@@ -94,9 +94,13 @@ def main(argv=None):
                    help="derivation: the families of n coordinates (bench.family)")
     b.add_argument("--n", default="2..8",
                    help="derivation --scale: the range of n, e.g. 2..4, or a list, 8,12,24")
-    b.add_argument("--family", choices=("both", "nonholonomic", "holonomic", "chain"),
-                   default="both", help="derivation --scale: which family (chain: the "
-                   "sleighs, against LagrangesMethod and KanesMethod)")
+    b.add_argument("--family", choices=("both", "nonholonomic", "holonomic", "chain", "rotors",
+                                        "coins", "all"),
+                   default="both", help="derivation --scale: which family (both, "
+                   "nonholonomic, holonomic: bench.family against LagrangesMethod; chain: "
+                   "spring-coupled sleighs, rotors: a train of sleighs with rotors, coins: "
+                   "rolling coins with off-centre masses, all: these three, each against "
+                   "LagrangesMethod and KanesMethod)")
     b.add_argument("--no-memory", action="store_true",
                    help="derivation --scale: skip the traced runs for peak memory")
     b.add_argument("--quick", action="store_true", help="numerics: a smaller study")
@@ -137,6 +141,8 @@ def main(argv=None):
     g.add_argument("--cell-timeout", type=float, default=60, help="seconds per cell (60)")
     g.add_argument("--timeout", type=float, default=300, help="seconds per notebook (300)")
     g.add_argument("--memory", type=int, default=3000, help="MB of memory per kernel (3000)")
+    g.add_argument("--cpus", type=float, default=None,
+                   help="CPUs' worth of time per notebook, over all its processes (1)")
     g.add_argument("--quiet", action="store_true", help="no progress bar")
     g.set_defaults(func=_grade)
     args, extra = parser.parse_known_args(argv)

@@ -13,11 +13,15 @@ Each time is the fastest of ``--repeat`` alternating runs of each side (the
 slower runs of a shared machine measure its other load), and the growth per
 added coordinate is fitted to them.
 
-``python -m whittaker_teach bench derivation --scale --family chain --n 4..24``: the
-chain of spring-coupled Chaplygin sleighs (:func:`chain`, g = n // 3), built by the
-benchmark with sympy.physics.mechanics, against both peers: LagrangesMethod (forming
-and ``rhs``) and KanesMethod (``kanes_equations`` and ``rhs``), the three in turn in
-fresh processes, the fastest of ``--repeat`` runs each.
+``python -m whittaker_teach bench derivation --scale --family chain --n 8,12,24``: a
+family of :data:`PEER_FAMILIES`, built by the benchmark with sympy.physics.mechanics,
+against both peers: LagrangesMethod (forming and ``rhs``) and KanesMethod
+(``kanes_equations`` and ``rhs``), the three in turn in fresh processes, the median of
+``--repeat`` rounds each.  The families: ``chain``, spring-coupled Chaplygin sleighs
+(:func:`chain`, g = n // 3); ``rotors``, a train of sleighs with their mass centres off
+the blades, each carrying a rotor (:func:`rotor_train`, g = n // 4); ``coins``, rolling
+coins with off-centre masses, two rolling constraints each (:func:`coin_train`,
+g = 2 (n // 4)); ``all``: the three in turn.
 
 ``python -m whittaker_teach bench derivation``: in fresh processes, the time
 to build the sledge, derive every step of the paper and verify them all,
@@ -225,16 +229,184 @@ def chain(n, kane=False):
     return out
 
 
-def run_ours_chain(n, holonomic=None):
-    """{"reduce": s, "verify": s, "ok": bool}: the chain as a mechanics user gives it
-    (``me.Lagrangian``, the constraints = 0 solved for the y_i), reduced with
-    q_eps = x_1 (CPU time of the process)."""
+def rotor_train(n, kane=False):
+    """A train of Chaplygin sleighs, each carrying a rotor, with n coordinates: s = n // 4
+    cars (x_i, y_i, theta_i, psi_i).  Car i: its blade at P_i = (x_i, y_i) has no velocity
+    across the car (P_i.vel(N).dot(B_i.y) = 0, y_i dependent); its mass centre C_i is a
+    ahead of the blade (mass m, moment of inertia J about C_i); at C_i a rotor turns by
+    psi_i relative to the car (mass m_r, moment of inertia I about its axle, the car's
+    vertical).  Springs: k/2 theta_i^2, kappa/2 (x_(i+1) - x_i)^2 (the hitches) and
+    c/2 (psi_(i+1) - psi_i)^2 (the rotors' shafts); the n - 4 s remaining coordinates z_j
+    are particles of mass M on springs to theta_1, as in :func:`chain`.  Unlike the
+    chain, (1.4) has velocity terms from the offset a, and each car's mass matrix couples
+    theta_i and psi_i.
+
+    Returns the dict of :func:`chain`; with ``kane``, the rotors' spring torques act on
+    the rotor and, reversed, on its car (the generalized force -dV/dpsi_i on psi_i
+    only).
+
+    >>> F = rotor_train(9)
+    >>> [str(c) for c in F["q"][:4]], [str(y) for y in F["dependent"]], str(F["q"][-1])
+    (['x1(t)', 'y1(t)', 'theta1(t)', 'psi1(t)'], ['y1(t)', 'y2(t)'], 'z1(t)')
+    """
+    import sympy as sp
+    import sympy.physics.mechanics as me
+    from sympy.physics.mechanics import dynamicsymbols
+    t = dynamicsymbols._t
+    s, r = n // 4, n - 4 * (n // 4)
+    m, J, a, m_r, I, k, c, kappa, M = sp.symbols("m J a m_r I k c kappa M", positive=True)
+    xs, ys, ths, psis = ([dynamicsymbols(f"{v}{i}") for i in range(1, s + 1)]
+                         for v in ("x", "y", "theta", "psi"))
+    zs = [dynamicsymbols(f"z{j}") for j in range(1, r + 1)]
+    q = [c_ for i in range(s) for c_ in (xs[i], ys[i], ths[i], psis[i])] + zs
+    u = {c_.diff(t): dynamicsymbols(f"u_{c_.func.__name__}") for c_ in q}
+    speed = (lambda e: e.xreplace(u)) if kane else (lambda e: e)
+    N = me.ReferenceFrame("N")
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    V = sp.S.Zero
+    bodies, coneqs, loads = [], [], []
+    for i in range(s):
+        B = N.orientnew(f"B{i + 1}", "Axis", (ths[i], N.z))
+        B.set_ang_vel(N, speed(ths[i].diff(t)) * N.z)
+        R = B.orientnew(f"R{i + 1}", "Axis", (psis[i], B.z))
+        R.set_ang_vel(B, speed(psis[i].diff(t)) * B.z)
+        P = O.locatenew(f"P{i + 1}", xs[i] * N.x + ys[i] * N.y)
+        P.set_vel(N, speed(xs[i].diff(t)) * N.x + speed(ys[i].diff(t)) * N.y)
+        C = P.locatenew(f"C{i + 1}", a * B.x)
+        C.v2pt_theory(P, N, B)
+        bodies += [me.RigidBody(f"car{i + 1}", C, B, m, (me.inertia(B, 0, 0, J), C)),
+                   me.RigidBody(f"rotor{i + 1}", C, R, m_r, (me.inertia(R, 0, 0, I), C))]
+        coneqs.append(P.vel(N).dot(B.y))
+        V += k / 2 * ths[i]**2
+        if i + 1 < s:
+            V += kappa / 2 * (xs[i + 1] - xs[i])**2 + c / 2 * (psis[i + 1] - psis[i])**2
+        loads += [(P, xs[i], N.x, None), (B, ths[i], N.z, None), (R, psis[i], N.z, B)]
+    V += _extra_particles(me, N, O, zs, M, k, c, ths[0], speed, bodies, loads)
+    return _finish(me, N, q, coneqs, ys, bodies, V, loads, u, kane)
+
+
+def coin_train(n, kane=False):
+    """A row of vertical rolling coins, each with an off-centre mass, with n coordinates:
+    s = n // 4 coins (x_i, y_i, theta_i, phi_i): the centre C_i = (x_i, y_i) of coin i
+    (radius R, mass m, moments of inertia I_a about its axle and I_d about a diameter),
+    its heading theta_i and its rolling angle phi_i; the coin rolls without slipping,
+    C_i.vel(N) = R phi_i' A_i.x (two constraints, x_i and y_i dependent); a point mass
+    m_e at distance e from C_i in the coin, under gravity g.  Springs: k/2 theta_i^2,
+    c/2 (theta_(i+1) - theta_i)^2, kappa/2 (phi_(i+1) - phi_i)^2; the n - 4 s remaining
+    coordinates z_j as in :func:`chain`.  Unlike the sleighs, two constraints per body,
+    of the rolling kind, and a mass matrix that couples theta_i and phi_i through the
+    off-centre mass.
+
+    Returns the dict of :func:`chain` (``dependent`` the x_i and y_i); with ``kane``,
+    gravity is a force on each off-centre mass.
+
+    >>> F = coin_train(4)
+    >>> [str(c) for c in F["q"]], len(F["coneqs"])
+    (['x1(t)', 'y1(t)', 'theta1(t)', 'phi1(t)'], 2)
+    """
+    import sympy as sp
+    import sympy.physics.mechanics as me
+    from sympy.physics.mechanics import dynamicsymbols
+    t = dynamicsymbols._t
+    s, r = n // 4, n - 4 * (n // 4)
+    m, R_, I_a, I_d, m_e, e, g, k, c, kappa, M = sp.symbols(
+        "m R I_a I_d m_e e g k c kappa M", positive=True)
+    xs, ys, ths, phis = ([dynamicsymbols(f"{v}{i}") for i in range(1, s + 1)]
+                         for v in ("x", "y", "theta", "phi"))
+    zs = [dynamicsymbols(f"z{j}") for j in range(1, r + 1)]
+    q = [c_ for i in range(s) for c_ in (xs[i], ys[i], ths[i], phis[i])] + zs
+    u = {c_.diff(t): dynamicsymbols(f"u_{c_.func.__name__}") for c_ in q}
+    speed = (lambda e_: e_.xreplace(u)) if kane else (lambda e_: e_)
+    N = me.ReferenceFrame("N")
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    V, V_gravity = sp.S.Zero, sp.S.Zero
+    bodies, coneqs, loads, forces = [], [], [], []
+    for i in range(s):
+        A = N.orientnew(f"A{i + 1}", "Axis", (ths[i], N.z))
+        A.set_ang_vel(N, speed(ths[i].diff(t)) * N.z)
+        D = A.orientnew(f"D{i + 1}", "Axis", (phis[i], A.y))
+        D.set_ang_vel(A, speed(phis[i].diff(t)) * A.y)
+        C = O.locatenew(f"C{i + 1}", xs[i] * N.x + ys[i] * N.y + R_ * N.z)
+        C.set_vel(N, speed(xs[i].diff(t)) * N.x + speed(ys[i].diff(t)) * N.y)
+        E = C.locatenew(f"E{i + 1}", e * D.x)
+        E.v2pt_theory(C, N, D)
+        coin = me.RigidBody(f"coin{i + 1}", C, D, m, (me.inertia(A, I_d, I_a, I_d), C))
+        bodies += [coin, me.Particle(f"mass{i + 1}", E, m_e)]
+        slip = C.vel(N) - R_ * speed(phis[i].diff(t)) * A.x
+        coneqs += [slip.dot(N.x), slip.dot(N.y)]
+        V += k / 2 * ths[i]**2
+        V_gravity += m_e * g * E.pos_from(O).dot(N.z)
+        forces.append((E, -m_e * g * N.z))
+        if i + 1 < s:
+            V += c / 2 * (ths[i + 1] - ths[i])**2 + kappa / 2 * (phis[i + 1] - phis[i])**2
+        loads += [(A, ths[i], N.z, None), (D, phis[i], A.y, None)]
+    V += _extra_particles(me, N, O, zs, M, k, c, ths[0], speed, bodies, loads)
+    return _finish(me, N, q, coneqs, [v for i in range(s) for v in (xs[i], ys[i])], bodies,
+                   V, loads, u, kane, forces, V_gravity)
+
+
+def _extra_particles(me, N, O, zs, M, k, c, ref, speed, bodies, loads):
+    """The coordinates z_j left over: particles of mass M on springs k/2 z_j^2 and
+    c/2 (z_j - ref)^2 (bodies and loads appended to); their potential."""
+    import sympy as sp
+    t = me.dynamicsymbols._t
+    V = sp.S.Zero
+    for j, z in enumerate(zs):
+        Q = O.locatenew(f"Q{j + 1}", z * N.z)
+        Q.set_vel(N, speed(z.diff(t)) * N.z)
+        bodies.append(me.Particle(f"Z{j + 1}", Q, M))
+        loads.append((Q, z, N.z, None))
+        V += k / 2 * z**2 + c / 2 * (z - ref)**2
+    return V
+
+
+def _finish(me, N, q, coneqs, dependent, bodies, V, loads, u, kane, forces=(), V_forces=0):
+    """The family's dict (:func:`chain`'s): L = me.Lagrangian - V - V_forces, or with
+    ``kane`` KanesMethod's arguments, the bodies and the loads: the springs' (V's), -dV/dq_r
+    along ``axis`` at each (point or frame, q_r, axis, reaction frame or None) -- a point's
+    or frame's velocity in q_r' is q_r' axis, so the load's generalized force is -dV/dq_r
+    on q_r; a reaction frame takes the opposite torque (a spring between two bodies) --
+    then ``forces`` (gravity, whose potential is V_forces)."""
+    t = me.dynamicsymbols._t
+    out = {"q": q, "coneqs": coneqs, "dependent": dependent}
+    if not kane:
+        out["L"] = me.Lagrangian(N, *bodies) - V - V_forces
+        return out
+    dep = set(dependent)
+    out["kane"] = dict(frame=N, q_ind=q, u_ind=[u[c_.diff(t)] for c_ in q if c_ not in dep],
+                       u_dependent=[u[y.diff(t)] for y in dependent],
+                       kd_eqs=[u[c_.diff(t)] - c_.diff(t) for c_ in q],
+                       velocity_constraints=coneqs)
+    out["bodies"] = bodies
+    out["loads"] = [(where, -V.diff(c_) * axis) for where, c_, axis, _ in loads]
+    out["loads"] += [(back, V.diff(c_) * axis) for _, c_, axis, back in loads if back]
+    out["loads"] += list(forces)
+    return out
+
+
+#: the families compared with both peers (``--family``): name -> (builder, title)
+PEER_FAMILIES = {
+    "chain": (chain, "chain of spring-coupled Chaplygin sleighs (g = n // 3)"),
+    "rotors": (rotor_train, "train of sleighs with rotors, mass centres off the blades "
+               "(g = n // 4)"),
+    "coins": (coin_train, "row of rolling coins with off-centre masses (g = 2 (n // 4))"),
+}
+
+
+def run_ours_family(n, family):
+    """{"reduce": s, "verify": s, "ok": bool}: the family (:data:`PEER_FAMILIES`) as a
+    mechanics user gives it (``me.Lagrangian``, the constraints = 0 solved for the
+    dependent velocities), reduced with q_eps = its first independent coordinate (CPU
+    time of the process)."""
     import time
     import whittaker_teach as wt
-    F = chain(n)
+    F = PEER_FAMILIES[family][0](n)
     t0 = time.process_time()
-    red = wt.ChaplyginSystem(F["L"], F["q"], nonhol_coneqs=F["coneqs"],
-                             dependent=F["dependent"]).reduce(F["q"][0], +1)
+    sys_ = wt.ChaplyginSystem(F["L"], F["q"], nonhol_coneqs=F["coneqs"],
+                              dependent=F["dependent"])
+    red = sys_.reduce(sys_.independent_coordinates[0], +1)
     red.equations
     red.accelerations()
     t1 = time.process_time()
@@ -243,11 +415,11 @@ def run_ours_chain(n, holonomic=None):
     return {"reduce": t1 - t0, "verify": t2 - t1, "ok": ok}
 
 
-def run_lagrange_chain(n, holonomic=None):
-    """{"peer": s}: LagrangesMethod forming and solving (rhs) the chain's equations."""
+def run_lagrange_family(n, family):
+    """{"peer": s}: LagrangesMethod forming and solving (rhs) the family's equations."""
     import time
     from sympy.physics.mechanics import LagrangesMethod
-    F = chain(n)
+    F = PEER_FAMILIES[family][0](n)
     t0 = time.process_time()
     lm = LagrangesMethod(F["L"], F["q"], nonhol_coneqs=F["coneqs"])
     lm.form_lagranges_equations()
@@ -255,17 +427,34 @@ def run_lagrange_chain(n, holonomic=None):
     return {"peer": time.process_time() - t0, "ok": True}
 
 
-def run_kane_chain(n, holonomic=None):
-    """{"peer": s}: KanesMethod (kanes_equations + rhs) of the chain, the same bodies and
-    the springs as loads, speeds u = qdot, the y_i's speeds dependent."""
+def run_kane_family(n, family):
+    """{"peer": s}: KanesMethod (kanes_equations + rhs) of the family: the same bodies,
+    the springs and gravity as loads, speeds u = qdot, the dependent coordinates' speeds
+    dependent."""
     import time
     from sympy.physics.mechanics import KanesMethod
-    F = chain(n, kane=True)
+    F = PEER_FAMILIES[family][0](n, kane=True)
     t0 = time.process_time()
     km = KanesMethod(**F["kane"])
     km.kanes_equations(F["bodies"], F["loads"])
     km.rhs()
     return {"peer": time.process_time() - t0, "ok": True}
+
+
+def run_ours_chain(n, holonomic=None):
+    """:func:`run_ours_family` of the chain (``holonomic`` is unused: the measurer's
+    signature)."""
+    return run_ours_family(n, "chain")
+
+
+def run_lagrange_chain(n, holonomic=None):
+    """:func:`run_lagrange_family` of the chain."""
+    return run_lagrange_family(n, "chain")
+
+
+def run_kane_chain(n, holonomic=None):
+    """:func:`run_kane_family` of the chain."""
+    return run_kane_family(n, "chain")
 
 
 def run_ours(n, holonomic):
@@ -296,13 +485,14 @@ def run_peer(n, holonomic):
     return {"peer": time.process_time() - t0, "ok": True}
 
 
-def _measured(fn, n, holonomic, traced=False):
-    """``bench.<fn>(n, holonomic)`` in this process; with ``traced``, its peak memory
-    (MiB, tracemalloc started here, after the imports) instead of its times."""
+def _measured(fn, n, holonomic, traced=False, family=None):
+    """``bench.<fn>(n, holonomic)`` in this process, or ``bench.<fn>(n, family)`` for a
+    family of :data:`PEER_FAMILIES`; with ``traced``, its peak memory (MiB, tracemalloc
+    started here, after the imports) instead of its times."""
     import tracemalloc
     if traced:
         tracemalloc.start()
-    out = globals()[fn](n, holonomic)
+    out = globals()[fn](n, family) if family else globals()[fn](n, holonomic)
     if traced:
         out = {"peak": tracemalloc.get_traced_memory()[1] / 2**20, "ok": out["ok"]}
         tracemalloc.stop()
@@ -342,7 +532,7 @@ for line in sys.stdin:
 
 # A new interpreter for each measurement (where there is no os.fork).
 _CHILD = _IMPORTS + """
-print(json.dumps(bench._measured({fn!r}, {n}, {hol}, {traced})))
+print(json.dumps(bench._measured({fn!r}, {n}, {hol}, {traced}, {family!r})))
 """
 
 
@@ -356,19 +546,21 @@ class _Measurer:
             self.server = subprocess.Popen([sys.executable, "-c", _SERVER], text=True,
                                            stdin=subprocess.PIPE, stdout=subprocess.PIPE)
 
-    def __call__(self, fn, n, holonomic, traced=False):
+    def __call__(self, fn, n, holonomic, traced=False, family=None):
         if self.server is None:
-            code = _CHILD.format(fn=fn, n=n, hol=holonomic, traced=traced)
+            code = _CHILD.format(fn=fn, n=n, hol=holonomic, traced=traced, family=family)
             out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                                  check=True).stdout.strip().splitlines()[-1]
             return json.loads(out)
-        job = {"fn": fn, "n": n, "holonomic": holonomic, "traced": traced}  # _measured's
+        job = {"fn": fn, "n": n, "holonomic": holonomic, "traced": traced,  # _measured's
+               "family": family}
         self.server.stdin.write(json.dumps(job) + "\n")
         self.server.stdin.flush()
         line = self.server.stdout.readline()
         out = json.loads(line) if line else {"error": "the benchmark's server process died"}
         if "error" in out:
-            raise RuntimeError(f"bench {fn}(n={n}, holonomic={holonomic}): {out['error']}")
+            what = f"family={family!r}" if family else f"holonomic={holonomic}"
+            raise RuntimeError(f"bench {fn}(n={n}, {what}): {out['error']}")
         return out
 
     def close(self):
@@ -378,37 +570,50 @@ class _Measurer:
             self.server = None
 
 
-def chain_rows(ns, repeat=1):
-    """One dict per n of the chain family (:func:`chain`): ours (reduce, verify),
-    LagrangesMethod (``peer``) and KanesMethod (``kane``), each the fastest of ``repeat``
-    runs, the three run in turn in fresh processes; the ratios to each peer."""
+def chain_rows(ns, repeat=1, family="chain"):
+    """One dict per n of a family of :data:`PEER_FAMILIES` (the chain by default): ours
+    (reduce, verify), LagrangesMethod (``peer``) and KanesMethod (``kane``), each the
+    median of ``repeat`` runs, the three in turn in each round (interleaved: a load on
+    the machine falls on all of them alike), each in a fresh process; the ratios of the
+    medians to each peer, and ``kane_ratios``, ours / Kane of each round."""
     rows = []
     measure = _Measurer()
     try:
         for n in ns:
-            runs = [(measure("run_ours_chain", n, None), measure("run_lagrange_chain", n, None),
-                     measure("run_kane_chain", n, None)) for _ in range(repeat)]
-            fastest = min((o for o, _, _ in runs), key=lambda o: o["reduce"] + o["verify"])
-            row = {"n": n, "reduce": fastest["reduce"], "verify": fastest["verify"],
+            runs = [(measure("run_ours_family", n, None, family=family),
+                     measure("run_lagrange_family", n, None, family=family),
+                     measure("run_kane_family", n, None, family=family))
+                    for _ in range(repeat)]
+            med = statistics.median
+            row = {"n": n, "family": family,
+                   "reduce": med(o["reduce"] for o, _, _ in runs),
+                   "verify": med(o["verify"] for o, _, _ in runs),
+                   "ours": med(o["reduce"] + o["verify"] for o, _, _ in runs),
                    "ok": all(o["ok"] for o, _, _ in runs),
-                   "peer": min(p["peer"] for _, p, _ in runs),
-                   "kane": min(k["peer"] for _, _, k in runs)}
-            row["ratio"] = (row["reduce"] + row["verify"]) / row["peer"]
-            row["kane_ratio"] = (row["reduce"] + row["verify"]) / row["kane"]
+                   "peer": med(p["peer"] for _, p, _ in runs),
+                   "kane": med(k["peer"] for _, _, k in runs),
+                   "kane_ratios": [(o["reduce"] + o["verify"]) / k["peer"] for o, _, k in runs]}
+            row["ratio"] = row["ours"] / row["peer"]
+            row["kane_ratio"] = row["ours"] / row["kane"]
             rows.append(row)
     finally:
         measure.close()
     return rows
 
 
-def chain_table(rows, title="chain of spring-coupled Chaplygin sleighs (g = n // 3)"):
-    """The chain rows as a text table (at most 100 columns)."""
-    lines = [f"{title}\n{'n':>3} {'g':>3} {'reduce s':>9} {'verify s':>9} {'Lagrange s':>10} "
-             f"{'Kane s':>8} {'/Lagrange':>9} {'/Kane':>6}  checks"]
+def chain_table(rows, title=None):
+    """The rows of :func:`chain_rows` as a text table (at most 100 columns): the medians,
+    and the range of ours / Kane over the rounds; the title is the family's unless given."""
+    title = title or PEER_FAMILIES[rows[0].get("family", "chain") if rows else "chain"][1]
+    lines = [f"{title}\n{'n':>3} {'reduce s':>9} {'verify s':>9} {'ours s':>8} "
+             f"{'Lagrange s':>10} {'Kane s':>8} {'/Lagrange':>9} {'/Kane':>6} "
+             f"{'rounds /Kane':>12}  checks"]
     for r in rows:
-        lines.append(f"{r['n']:>3} {r['n'] // 3:>3} {r['reduce']:9.3f} {r['verify']:9.3f} "
+        each = r.get("kane_ratios") or [r["kane_ratio"]]
+        lines.append(f"{r['n']:>3} {r['reduce']:9.3f} {r['verify']:9.3f} {r['ours']:8.3f} "
                      f"{r['peer']:10.3f} {r['kane']:8.3f} {r['ratio']:9.2f} "
-                     f"{r['kane_ratio']:6.2f}  {'held' if r['ok'] else 'FAILED'}")
+                     f"{r['kane_ratio']:6.2f} {f'{min(each):.2f}-{max(each):.2f}':>12}  "
+                     f"{'held' if r['ok'] else 'FAILED'}")
     return "\n".join(lines)
 
 
@@ -470,24 +675,29 @@ def scale_main(args):
         lo, _, hi = args.n.partition("..")
         ns = range(int(lo), int(hi or lo) + 1)
     repeat = max(1, getattr(args, "repeat", 1))
-    print("CPU seconds. reduce: build, reduce, (1.26) and q'' solved; verify: every check;\n"
-          "peer: LagrangesMethod forming and solving; ratio = (reduce + verify) / peer;\n"
+    print("CPU seconds. reduce: build, reduce, (1.26) and q'' solved; verify: every check;")
+    ok = True
+    family = getattr(args, "family", "both")
+    if family in PEER_FAMILIES or family == "all":
+        names = list(PEER_FAMILIES) if family == "all" else [family]
+        print("ours = reduce + verify; beside KanesMethod (kanes_equations + rhs) and\n"
+              "LagrangesMethod (forming + rhs); /Lagrange, /Kane: ours over each; the medians\n"
+              f"of {repeat} rounds (each round: ours, Lagrange, Kane in turn, each in a fresh\n"
+              "process forked after the imports); no memory columns", flush=True)
+        for name in names:
+            rows = chain_rows(ns, repeat=repeat, family=name)
+            print(chain_table(rows), flush=True)
+            if len(rows) > 1:
+                print(f"growth per added coordinate (least squares on log time): ours "
+                      f"x{growth(rows, lambda r: r['ours']):.3f}, Lagrange "
+                      f"x{growth(rows, lambda r: r['peer']):.3f}, Kane "
+                      f"x{growth(rows, lambda r: r['kane']):.3f}", flush=True)
+            ok = ok and all(r["ok"] for r in rows)
+        return 0 if ok else 1
+    print("peer: LagrangesMethod forming and solving; ratio = (reduce + verify) / peer;\n"
           f"the fastest of {repeat} alternating runs of each side, each in a fresh process\n"
           "(forked after the imports);\n"
           "peak memory (MiB, after the imports) by tracemalloc")
-    ok = True
-    family = getattr(args, "family", "both")
-    if family == "chain":
-        rows = chain_rows(ns, repeat=repeat)
-        print("chain: KanesMethod (kanes_equations + rhs) beside LagrangesMethod (forming +\n"
-              "rhs); /Lagrange, /Kane: (reduce + verify) over each; no memory columns", flush=True)
-        print(chain_table(rows), flush=True)
-        if len(rows) > 1:
-            print(f"growth per added coordinate (least squares on log time): ours "
-                  f"x{growth(rows, lambda r: r['reduce'] + r['verify']):.3f}, Lagrange "
-                  f"x{growth(rows, lambda r: r['peer']):.3f}, Kane "
-                  f"x{growth(rows, lambda r: r['kane']):.3f}", flush=True)
-        return 0 if all(r["ok"] for r in rows) else 1
     kinds = {"both": (False, True), "nonholonomic": (False,), "holonomic": (True,)}
     for holonomic in kinds[family]:
         rows = scale_rows(ns, holonomic, memory=not args.no_memory, repeat=repeat)
