@@ -28,9 +28,14 @@ which :func:`exercise_from_data` builds the :class:`~.specs.Exercise` that
 ``notes`` ({name: what to write instead}) is said when an answer uses a name
 that is not a symbol of the exercise (``{"g": "gravity is g_0"}``).
 
-A domain entry is a range ``[low, high]`` or one of the names of
-:data:`PRESETS`; a symbol without an entry is sampled on ``positive`` when
-declared positive (``m+``), else on ``[-1, 1]``.  A part is an expression
+A domain entry is a range ``[low, high]`` (``None`` for no bound on that
+side: ``[1.5708, None]`` is s > 1.5708) or one of the names of
+:data:`PRESETS` (``positive`` and ``speed`` are 0 < s, ``slope``, ``energy``
+and ``real`` every real value, ``angle`` |s| < pi/2, ``turn`` |s| < pi,
+``unit`` |s| < 1); a symbol without an entry is on ``positive`` when declared
+positive (``m+``), else on ``real``.  It is the statement's domain: answers
+are compared on the whole of it (:class:`~.compare.Domain`), an infinite
+range over many decades.  The answer data keeps a preset by its name.  A part is an expression
 (its answer a SymPy expression or a number) unless it has ``choices``
 (``{key: [[other spellings], message]}``): then the solution's answer is
 the right key.  Optional keys of a part: ``points`` (default 1),
@@ -48,6 +53,7 @@ from __future__ import annotations
 
 import ast
 import json
+import math
 import os
 
 import sympy as sp
@@ -57,13 +63,17 @@ from .answers import FORMAT, from_srepr, to_srepr
 __all__ = ["PRESETS", "read_spec", "make_data", "exercise_from_data", "collecting",
            "record_expected", "SpecError"]
 
+_INF = float("inf")
+_HALF_PI = 1.5707963267948966
+#: the named domains (open ranges; an infinite end is sampled over many decades)
 PRESETS = {
-    "positive": (0.5, 2.0),        # masses, moments of inertia, lengths, constants
-    "angle": (-1.5707, 1.5707),    # |theta| < pi/2
-    "turn": (-3.1415, 3.1415),     # an angle the statement does not restrict
-    "slope": (-3.0, 3.0),          # q' = dq/dq_eps
-    "speed": (0.05, 3.0),          # qdot_eps > 0, the direction of travel
-    "energy": (0.5, 4.0),
+    "positive": (0.0, _INF),          # masses, moments of inertia, lengths, constants
+    "angle": (-_HALF_PI, _HALF_PI),   # |theta| < pi/2
+    "turn": (-2 * _HALF_PI, 2 * _HALF_PI),   # an angle over a whole turn
+    "slope": (-_INF, _INF),           # q' = dq/dq_eps, any real value
+    "speed": (0.0, _INF),             # qdot_eps > 0, the direction of travel
+    "energy": (-_INF, _INF),          # an energy constant: any value the conditions allow
+    "real": (-_INF, _INF),            # any real value (a symbol not declared positive)
     "unit": (-1.0, 1.0),
 }
 PART_KEYS = {"what", "points", "variables", "why_not", "sign_note", "success", "wrong", "rtol",
@@ -112,14 +122,22 @@ def _check_spec(spec, where):
     if not isinstance(spec.get("solvers", False), bool):
         raise SpecError(f"{where}: 'solvers' is True or False")
     names = _symbol_names(spec["symbols"])
+    positive = {t.rstrip("+") for t in _split(spec["symbols"]) if t.endswith("+")}
     for name, rng in spec.get("domain", {}).items():
         if name not in names:
             raise SpecError(f"{where}: the domain names {name!r}, which is not in 'symbols'")
-        if not ((isinstance(rng, str) and rng in PRESETS) or (isinstance(rng, (list, tuple)) and len(rng) == 2
-                                   and all(isinstance(v, (int, float)) for v in rng)
-                                   and rng[0] < rng[1])):
-            raise SpecError(f"{where}: the domain of {name} must be [low, high] or one of "
-                            f"{', '.join(PRESETS)}")
+        if not ((isinstance(rng, str) and rng in PRESETS) or (
+                isinstance(rng, (list, tuple)) and len(rng) == 2
+                and all(v is None or (isinstance(v, (int, float)) and not isinstance(v, bool)
+                                      and math.isfinite(v)) for v in rng)
+                and (None in rng or rng[0] < rng[1]))):
+            raise SpecError(f"{where}: the domain of {name} must be [low, high] (finite "
+                            "numbers, low < high; None for no bound: [0, None] is s > 0) "
+                            f"or one of {', '.join(PRESETS)}")
+        low = domain_range(rng)[0]
+        if name in positive and low < 0:
+            raise SpecError(f"{where}: {name} is declared positive ({name}+) but its domain "
+                            f"{rng!r} reaches below 0")
     for name, part in spec["parts"].items():
         if not isinstance(part, dict) or not part.get("what"):
             raise SpecError(f"{where}: part {name!r} needs a dict with 'what'")
@@ -201,12 +219,7 @@ def make_data(ex_id, spec, collected, source_sha256=""):
 
     definitions = {k: expr(v, f"the definition of {k}")
                    for k, v in spec.get("definitions", {}).items()}
-    domain = {}
-    for s in symbols:
-        rng = spec.get("domain", {}).get(s.name)
-        if rng is None:
-            rng = "positive" if s.is_positive else "unit"
-        domain[s.name] = list(PRESETS[rng] if isinstance(rng, str) else rng)
+    domain = domain_data(spec)
     conditions = [expr(c, "the condition") for c in spec.get("conditions", [])]
     parts = []
     for name, p in spec["parts"].items():
@@ -261,11 +274,39 @@ def make_data(ex_id, spec, collected, source_sha256=""):
 def _same_form(ex_id, name, form, answer, domain, by_name, conditions):
     """The lecturer's form of a part's answer, once shown equal to the solution's."""
     from .compare import Domain, equal
-    dom = Domain({by_name[k]: tuple(v) for k, v in domain.items()}, tuple(conditions))
+    dom = Domain({by_name[k]: domain_range(v) for k, v in domain.items()}, tuple(conditions))
     if not equal(form, answer, dom, 0):
         raise SpecError(f"{ex_id}: the 'form' of part {name!r}, {sp.sstr(form)[:60]}, is not "
                         f"equal to the solution's answer {sp.sstr(answer)[:60]} on the domain")
     return form
+
+
+def domain_data(spec):
+    """The stored domain of a spec: {symbol name: preset name or [low, high]} for every
+    symbol (``positive`` for one declared positive and not named, else ``real``)."""
+    domain = {}
+    for s in _symbols(spec["symbols"]):
+        rng = spec.get("domain", {}).get(s.name)
+        if rng is None:
+            rng = "positive" if s.is_positive else "real"
+        domain[s.name] = rng if isinstance(rng, str) else \
+            [None if v is None else float(v) for v in rng]
+    return domain
+
+
+def domain_range(entry):
+    """(low, high) of a stored domain entry: a name of :data:`PRESETS` or [low, high]
+    (None: no bound on that side).
+
+    >>> domain_range("angle")[1], domain_range([0, None]), domain_range([None, 2])
+    (1.5707963267948966, (0.0, inf), (-inf, 2.0))
+    """
+    if isinstance(entry, str):
+        if entry not in PRESETS:
+            raise ValueError(f"answer data: unknown domain {entry!r}")
+        return PRESETS[entry]
+    low, high = entry
+    return (-_INF if low is None else float(low), _INF if high is None else float(high))
 
 
 def _resolve(e, by_name, ex_id, what):
@@ -292,7 +333,7 @@ def exercise_from_data(data):
     def builder():
         definitions = {k: read(v) for k, v in data.get("definitions", {}).items()}
         names = Names(symbols, data.get("functions"), definitions, data.get("notes"))
-        dom = Domain({by_name[k]: tuple(v) for k, v in data["domain"].items()},
+        dom = Domain({by_name[k]: domain_range(v) for k, v in data["domain"].items()},
                      conditions=tuple(read(c) for c in data.get("conditions", [])))
         parts = []
         for p in data["parts"]:

@@ -1,17 +1,27 @@
 """Is an answer equal to the right one, and if not, what kind of difference is it?
 
-Equality is decided by evaluation at admissible points spread over the
-whole domain the exercise states (:meth:`Domain.sample`: every range is cut
-into slices and each slice gets a point, so an angle is tried all round the
-circle and ``e`` up to its largest value), with mpmath at 30 digits: the
-points respect the exercise's assumptions (positive masses, the direction of
-travel, an energy above the potential), so any form of the right answer
-(``1 + tan(theta)**2`` or ``sec(theta)**2``, expanded or factored,
-``sqrt(a)*sqrt(b)`` or ``sqrt(a*b)``) agrees with it to about 28 digits at
-every point, and a wrong answer, or one right on only part of the domain
-(``sqrt(1 - sin(theta)**2)`` for ``cos(theta)``), does not.  The evaluation
-is guarded (:class:`_Fn`): a value beyond 1e300 (``exp(exp(exp(100)))``) is
-never computed.
+Equality is decided on the whole domain the exercise states (a range per
+symbol, possibly infinite, and conditions): by evaluation with mpmath at 30
+digits at admissible points of three kinds, every range cut into slices with a
+point in each (:meth:`Domain.sample`): points of the moderate core of the
+ranges and points over the whole domain, both fixed for a part (so that a
+wrong answer gets the same hint at every check), and as many points over the
+whole domain drawn afresh at every check from the operating system's
+randomness (:meth:`Domain.fresh`), so that no answer can be fitted to known
+points.  An infinite range is sampled over many decades (10**-3 to 10**3 on
+either side of its end, or of 0), a bounded one up to near its ends.  Values
+agree within a relative tolerance (1e-10) at every magnitude.  Where the two
+expressions are rational functions of bounded size, an exact test decides
+(:func:`exact_zero`, ``cancel`` of the difference, never ``simplify``).
+
+The points respect the exercise's assumptions (positive masses, the
+direction of travel, an energy above the potential), so any form of the
+right answer (``1 + tan(theta)**2`` or ``sec(theta)**2``, expanded or
+factored, ``sqrt(a)*sqrt(b)`` or ``sqrt(a*b)``) agrees with it to about 28
+digits at every point, and a wrong answer, or one right on only part of the
+domain (``sqrt(1 - sin(theta)**2)`` for ``cos(theta)``, ``Min(m, 2)`` for a
+mass ``m``), does not.  The evaluation is guarded (:class:`_Fn`): a value
+beyond 1e300 (``exp(exp(exp(100)))``) is never computed.
 
 When the answer is wrong, :func:`compare` looks for a simple explanation,
 in this order: complex values where the right answer is real, a wrong sign,
@@ -36,6 +46,7 @@ your answer is 1/k times the right one: a factor k is missing (or the power of k
 
 from __future__ import annotations
 
+import os
 import random
 from dataclasses import dataclass, field
 
@@ -45,21 +56,83 @@ from sympy.functions.elementary.piecewise import ExprCondPair
 
 from .limits import TOO_EXPENSIVE, TooExpensive
 
-__all__ = ["Domain", "Verdict", "compare", "equal", "depends_on"]
+__all__ = ["Domain", "Verdict", "compare", "equal", "exact_zero", "depends_on"]
 
 DPS = 30
 TOL = mpmath.mpf(10) ** -10   # relative: exact forms agree to ~28 digits, floats to ~15
+FLOOR = mpmath.mpf(10) ** -20  # below this, a difference is rounding (a value that is 0)
 POINTS = 8
+
+
+INF = float("inf")
+DECADES = 3        # an unbounded range: magnitudes from 10**-DECADES to 10**DECADES
+REDRAWS = 40       # draws of a candidate's condition symbols before it is given up
+EDGE = 1e-5        # the end slices of a bounded range reach within EDGE * width of its ends
+
+
+def fresh_rng():
+    """A generator seeded from the operating system: new points at every check."""
+    try:
+        seed = int.from_bytes(os.urandom(16), "big")
+    except (NotImplementedError, OSError):  # pragma: no cover - no system randomness
+        seed = random.SystemRandom().getrandbits(128)
+    return random.Random(seed)
+
+
+CORE = (mpmath.mpf("0.05"), mpmath.mpf(3))   # the core of a half-line: lo + 0.05 ... lo + 3
+
+
+def _at(lo, hi, u, n, core=False):
+    """The value at u in (0, 1) of the range (lo, hi) (ends may be infinite), mixing scales.
+
+    The map is increasing.  A bounded range is uniform inside and, in its first and
+    last 1/n, approaches its ends log-uniformly down to EDGE times its width.  A
+    half-line is lo + 10**(-DECADES ... DECADES), and the whole line the same on either
+    side of 0, so that a stratified u gives magnitudes over 2 * DECADES decades.
+    ``core``: the moderate middle only (a bounded range uniformly, a half-line
+    lo + 0.05 ... lo + 3, the line -3 ... 3), where the hints look for the kind of a
+    difference.
+    """
+    u = min(max(u, 1e-12), 1 - 1e-12)
+    if core:
+        if lo > -INF and hi < INF:
+            return mpmath.mpf(lo) + (mpmath.mpf(hi) - mpmath.mpf(lo)) * u
+        if lo > -INF:
+            return mpmath.mpf(lo) + CORE[0] + (CORE[1] - CORE[0]) * u
+        if hi < INF:
+            return mpmath.mpf(hi) - CORE[0] - (CORE[1] - CORE[0]) * (1 - u)
+        return CORE[1] * (2 * u - 1)
+    if lo > -INF and hi < INF:
+        lo, hi = mpmath.mpf(lo), mpmath.mpf(hi)
+        width = hi - lo
+        if u < 1 / n or u > 1 - 1 / n:
+            w = u * n if u < 1 / n else (1 - u) * n          # 0 at the end, 1 inside
+            a = mpmath.log10(EDGE)
+            d = width * mpmath.power(10, a + (mpmath.log10(mpmath.mpf(1) / n) - a) * w)
+            return lo + d if u < 1 / n else hi - d
+        return lo + width * u
+    if lo > -INF:
+        return mpmath.mpf(lo) + mpmath.power(10, -DECADES + 2 * DECADES * u)
+    if hi < INF:
+        return mpmath.mpf(hi) - mpmath.power(10, DECADES - 2 * DECADES * u)
+    if u < 0.5:
+        return -mpmath.power(10, DECADES - 4 * DECADES * u)
+    return mpmath.power(10, -DECADES + 4 * DECADES * (u - 0.5))
 
 
 @dataclass
 class Domain:
-    """Where answers are compared: a box of values and conditions.
+    """Where answers are compared: ranges of values and conditions.
 
-    ``ranges``: {symbol: (low, high)}; ``conditions``: expressions that must
-    be positive at a point; ``derived``: {symbol: expression of the others},
-    evaluated after the box is sampled (e.g. the energy constant h of a
-    sampled motion).
+    ``ranges``: {symbol: (low, high)}, either end possibly infinite
+    (``float("inf")``); ``conditions``: expressions that must be positive at a
+    point; ``derived``: {symbol: expression of the others}, evaluated after the
+    ranges are sampled (e.g. the energy constant h of a sampled motion).
+
+    Two sets of points serve a check: :meth:`points` of a seed (the same at every
+    check of a part, so that a wrong answer gets the same hint every time) and
+    :meth:`fresh` ones, drawn anew at every check from the operating system's
+    randomness, so that no answer can be fitted to known points.
     """
 
     ranges: dict
@@ -68,6 +141,9 @@ class Domain:
 
     def __post_init__(self):
         self.symbols = sorted([*self.ranges, *self.derived], key=str)
+        for s, (lo, hi) in self.ranges.items():
+            if not lo < hi:
+                raise ValueError(f"the range of {s} is empty: ({lo}, {hi})")
         self._cond = None
         self._der = None
         self._points = {}
@@ -85,6 +161,10 @@ class Domain:
         conds = self._compiled()
         try:
             with mpmath.workdps(DPS):
+                for s, (lo, hi) in self.ranges.items():
+                    v = pt[s]
+                    if mpmath.im(v) != 0 or not lo <= mpmath.re(v) <= hi:
+                        return False
                 for c in conds:
                     v = mpmath.mpmathify(c(*[pt[s] for s in self.symbols]))
                     if not (abs(mpmath.im(v)) == 0 and mpmath.re(v) > 0):
@@ -101,33 +181,54 @@ class Domain:
                 pt[s] = mpmath.mpmathify(fn(*[pt[b] for b in base]))
         return pt
 
-    def points(self, seed, n=POINTS):
-        """The n sample points of a seed (kept: every check of a part uses the same)."""
-        key = (seed, n)
+    def points(self, seed, n=POINTS, core=False):
+        """The n sample points of a seed (kept: every check of a part uses the same);
+        ``core``: in the moderate middle of the ranges only (see :func:`_at`)."""
+        key = (seed, n, core)
         if key not in self._points:
-            self._points[key] = self.sample(random.Random(seed), n)
+            self._points[key] = self.sample(random.Random(seed), n, core)
         return [dict(p) for p in self._points[key]]
 
-    def sample(self, rng, n=POINTS):
-        """n admissible points, spread over every range (Latin hypercube batches).
+    def fresh(self, n=POINTS):
+        """n points over the whole domain, drawn anew (from the operating system's
+        randomness) at every call."""
+        return self.sample(fresh_rng(), n)
 
-        Each batch of n candidates takes, for each symbol, one value from
-        each of n equal slices of its range, so that the points reach the
-        ends of every range (an angle over its full period, e up to its
-        largest stated value) instead of clustering by chance.
+    def sample(self, rng, n=POINTS, core=False):
+        """n admissible points over the whole of every range (Latin hypercube batches).
+
+        Each batch of n candidates takes, for each symbol, one value from each of n
+        equal slices of (0, 1), mapped onto the symbol's range by :func:`_at`: a
+        bounded range is covered to within a small fraction of its ends, a half-line
+        or the whole line over 2 * DECADES decades of magnitude (on both sides of 0),
+        so that the points reach the ends of every range instead of clustering by
+        chance.
         """
         pts = []
         items = sorted(self.ranges.items(), key=lambda kv: str(kv[0]))
-        for _ in range(200):
-            strata = {s: rng.sample(range(n), n) for s, _ in items}
-            for i in range(n):
-                pt = {s: mpmath.mpf(lo + (hi - lo) * (strata[s][i] + rng.random()) / n)
-                      for s, (lo, hi) in items}
-                self.complete(pt)
-                if self.admissible(pt):
-                    pts.append(pt)
-                    if len(pts) == n:
-                        return pts
+        # the symbols of the conditions (and those the derived ones are made of): a
+        # candidate that fails a condition is drawn again in these only, so that the
+        # others keep one value in each slice
+        tied = set().union(*[c.free_symbols for c in self.conditions], set())
+        if self.derived:
+            tied |= set().union(*[e.free_symbols for e in self.derived.values()])
+        redraw = [(s, lo, hi) for s, (lo, hi) in items if s in tied]
+        with mpmath.workdps(DPS):
+            for _ in range(200):
+                strata = {s: rng.sample(range(n), n) for s, _ in items}
+                for i in range(n):
+                    pt = {s: +_at(lo, hi, (strata[s][i] + rng.random()) / n, n, core)
+                          for s, (lo, hi) in items}
+                    for _ in range(REDRAWS if redraw else 0):
+                        if self.admissible(self.complete(pt)):
+                            break
+                        for s, lo, hi in redraw:
+                            pt[s] = +_at(lo, hi, rng.random(), n, core)
+                    self.complete(pt)
+                    if self.admissible(pt):
+                        pts.append(pt)
+                        if len(pts) == n:
+                            return pts
         raise RuntimeError("the exercise's domain has too few admissible points")
 
 
@@ -364,8 +465,13 @@ def _apply(kind, args, e):
     raise ValueError(f"cannot evaluate {kind.__name__}")
 
 
+def _same(u, v, rel=TOL):
+    """|u - v| <= rel max(|u|, |v|), relative at every magnitude (FLOOR: the noise of 0)."""
+    return abs(u - v) <= rel * max(abs(u), abs(v)) + FLOOR
+
+
 def _close(u, v):
-    return abs(u - v) <= TOL * max(1, abs(u), abs(v))
+    return _same(u, v)
 
 
 def _nice(c):
@@ -383,8 +489,9 @@ def _nice(c):
     return sp.Float(x, 4)
 
 
-def depends_on(fn, s, p0, pts, domain):
-    """Does fn change when only s changes (from p0 to other admissible values)?"""
+def depends_on(fn, s, p0, pts, domain, most=2):
+    """Does fn change when only s changes (from p0 to the values of s at ``most`` other
+    points, ``None``: all of them)?"""
     v0 = fn(p0)
     tried = 0
     for p in pts[1:]:
@@ -400,7 +507,7 @@ def depends_on(fn, s, p0, pts, domain):
             continue
         if not _close(v0, v1):
             return True
-        if tried >= 2:
+        if most is not None and tried >= most:
             break
     return False
 
@@ -536,44 +643,79 @@ def _compiled(expr, syms):
     return _COMPILED[key]
 
 
-def equal(answer, expected, domain, seed=0, tol=None):
-    """Is answer equal to expected on the domain's sample points (no hint)?"""
+def equal(answer, expected, domain, seed=0, tol=None, fresh=True):
+    """Is answer equal to expected on the domain (no hint)?
+
+    At the seed's points and, with ``fresh``, at points drawn anew; an exact zero
+    test of the difference decides first where it is affordable (:func:`exact_zero`).
+    """
+    exact = exact_zero(answer, expected, domain)
+    if exact is not None:
+        return exact
     syms = domain.symbols
-    pts = domain.points(seed)
     fa, fe = _Fn(answer, syms), _compiled(expected, syms)
     rel = TOL if tol is None else mpmath.mpf(tol)
     n = 0
-    for p in pts:
+    for p in domain.points(seed, core=True) + domain.points(seed) + \
+            (domain.fresh() if fresh else []):
         e = fe(p)
         if e is None:
             continue
         a = fa(p)
-        if a is None or abs(a - e) > rel * max(1, abs(a), abs(e)):
+        if a is None or not _same(a, e, rel):
             return False
         n += 1
     return n >= 3
 
 
-def compare(answer, expected, domain, seed=0, sign_note="", tol=None):
+def compare(answer, expected, domain, seed=0, sign_note="", tol=None, fresh=True):
     """Compare two expressions of the domain's symbols: a :class:`Verdict`.
 
-    ``tol``: the relative tolerance of equality (default 1e-10; a measured
-    number, such as where an integrator stopped, needs a looser one).
+    Equal means equal at the seed's points (:meth:`Domain.points`, the same at every
+    check) and at as many points drawn anew for this check (:meth:`Domain.fresh`,
+    unless ``fresh`` is False), within the relative tolerance ``tol`` (default 1e-10;
+    a measured number, such as where an integrator stopped, needs a looser one) at
+    every magnitude.  Where the two are rational functions of the symbols (or of the
+    same functions of them) of bounded size, :func:`exact_zero` decides exactly.
+    A wrong answer's hint is read off the seed's points, so that it is the same at
+    every check, unless only fresh points show the difference: then they are used too.
     """
     syms = domain.symbols
-    pts = domain.points(seed)
-    fa, fe = _Fn(answer, syms), _compiled(expected, syms)
-    A = [fa(p) for p in pts]
-    E = [fe(p) for p in pts]
-    keep = [i for i, e in enumerate(E) if e is not None]
-    if len(keep) < 3:
-        raise RuntimeError(f"the right answer cannot be evaluated on the domain: {expected}")
-    pts = [pts[i] for i in keep]
-    A = [A[i] for i in keep]
-    E = [E[i] for i in keep]
-    rel = TOL if tol is None else mpmath.mpf(tol)
-    if all(a is not None and abs(a - e) <= rel * max(1, abs(a), abs(e)) for a, e in zip(A, E)):
+    exact = exact_zero(answer, expected, domain)
+    if exact:
         return Verdict(True)
+    fa, fe = _Fn(answer, syms), _compiled(expected, syms)
+    rel = TOL if tol is None else mpmath.mpf(tol)
+
+    def values(points):
+        keep = [(p, fe(p)) for p in points]
+        keep = [(p, e) for p, e in keep if e is not None]
+        return [p for p, _ in keep], [fa(p) for p, _ in keep], [e for _, e in keep]
+
+    pts, A, E = values(domain.points(seed, core=True))
+    if len(pts) < 3:
+        raise RuntimeError(f"the right answer cannot be evaluated on the domain: {expected}")
+
+    def agree(a, e):
+        return a is not None and _same(a, e, rel)
+
+    if all(agree(a, e) for a, e in zip(A, E)):
+        # the part's points over the whole domain; only if they see no difference, fresh ones
+        # (so that a hint depends on the fresh points only when nothing else shows it)
+        more, MA, ME = values(domain.points(seed))
+        bad = [i for i, (a, e) in enumerate(zip(MA, ME)) if not agree(a, e)]
+        if not bad and fresh:
+            more, MA, ME = values(domain.fresh())
+            bad = [i for i, (a, e) in enumerate(zip(MA, ME)) if not agree(a, e)]
+        if not bad:
+            if exact is False:
+                return Verdict(False, "your answer is not equal to the right one: the "
+                               "difference is too small to see in the numbers, but it is "
+                               "not 0", "other")
+            return Verdict(True)
+        pts = pts + [more[i] for i in bad]
+        A = A + [MA[i] for i in bad]
+        E = E + [ME[i] for i in bad]
     if fa.huge:
         return Verdict(False, "your answer takes values beyond 1e300 at some admissible values "
                        f"of the symbols, where the right one does not: {TOO_EXPENSIVE}")
@@ -582,6 +724,89 @@ def compare(answer, expected, domain, seed=0, sign_note="", tol=None):
     except TooExpensive:
         return Verdict(False, "your answer is not equal to the right one (finding what kind of "
                        "difference it is took too long)")
+
+
+#: the bounds of the exact test: nodes of each expression, |n| of an integer power,
+#: terms of the expanded difference (an upper estimate, computed before expanding)
+EXACT_NODES = 300
+EXACT_POWER = 12
+EXACT_TERMS = 3000
+
+
+def _as_rational(e, gens):
+    """e as a rational function of symbols and generators (other subexpressions, each
+    replaced by one dummy symbol): the expression, or None beyond the bounds/with a Float."""
+    if e.is_Symbol or e.is_Rational:
+        return e
+    if e.is_Float:
+        return None
+    if e.is_Add or e.is_Mul:
+        args = [_as_rational(a, gens) for a in e.args]
+        return None if any(a is None for a in args) else e.func(*args)
+    if e.is_Pow and e.exp.is_Integer:
+        if abs(e.exp) > EXACT_POWER:
+            return None
+        b = _as_rational(e.base, gens)
+        return None if b is None else b ** e.exp
+    if e.has(sp.Float):
+        return None
+    if e not in gens:
+        gens[e] = sp.Dummy()
+    return gens[e]
+
+
+def _terms(e):
+    """An upper estimate of the number of terms of e expanded (over a common denominator)."""
+    if e.is_Add:
+        return sum(_terms(a) for a in e.args)
+    if e.is_Mul:
+        n = 1
+        for a in e.args:
+            n *= _terms(a)
+            if n > EXACT_TERMS:
+                return n
+        return n
+    if e.is_Pow and e.exp.is_Integer:
+        from math import comb
+        t = _terms(e.base)
+        return comb(t + abs(int(e.exp)) - 1, abs(int(e.exp))) if t <= EXACT_TERMS else t
+    return 1
+
+
+def exact_zero(answer, expected, domain):
+    """An exact test of answer == expected, where it is affordable: True (the difference
+    is 0 as a rational function of the symbols and of the functions in it), False (it is
+    a rational function of the symbols alone that is not 0, so it is not 0 on any open
+    set of the domain), or None (not decided: bounds exceeded, Floats, or functions).
+
+    Bounded: at most EXACT_NODES nodes each, integer powers up to EXACT_POWER, and an
+    estimated EXACT_TERMS terms once expanded; ``cancel`` of the difference, never
+    ``simplify``.
+
+    >>> x, y = sp.symbols("x y")
+    >>> dom = Domain({x: (0, INF), y: (-INF, INF)})
+    >>> exact_zero((x + y)**2 / (x + y), x + y, dom), exact_zero(x + y + x**2 / 10**40, x + y, dom)
+    (True, False)
+    >>> exact_zero(sp.sqrt(x**2), x, dom) is None
+    True
+    """
+    if domain.derived or not isinstance(answer, sp.Expr) or not isinstance(expected, sp.Expr):
+        return None
+    if not (answer.free_symbols | expected.free_symbols) <= set(domain.symbols):
+        return None
+    for e in (answer, expected):
+        if sum(1 for _ in zip(range(EXACT_NODES + 1), sp.preorder_traversal(e))) > EXACT_NODES:
+            return None
+    gens = {}
+    a, b = _as_rational(answer, gens), _as_rational(expected, gens)
+    if a is None or b is None:
+        return None
+    diff = a - b
+    if _terms(diff) > EXACT_TERMS:
+        return None
+    if sp.cancel(sp.together(diff)) == 0:
+        return True
+    return False if not gens else None
 
 
 def _explain(answer, expected, domain, sign_note, fa, fe, pts, A, E):
@@ -882,19 +1107,32 @@ def _sign_flip(Q, pts, term):
 
 
 def _part_of_domain(answer, A, E, pts):
-    """Right at some sample points, wrong at others: say so, with a point where it is wrong."""
+    """Right at some sample points, wrong at others: say so, with a point where it is wrong,
+    and what to look at (cases, a root or an inverse function, or a term that is small
+    at moderate values only)."""
     right = [i for i, (a, e) in enumerate(zip(A, E)) if _close(a, e)]
     if not right or len(right) == len(A):
         return ""
     wrong = [i for i in range(len(A)) if i not in right][0]
     p = pts[wrong]
+    cases = set()
+    for f in answer.atoms(sp.Max, sp.Min, sp.Piecewise, sp.Heaviside):
+        cases |= f.free_symbols
     branchy = set()
     for f in answer.atoms(sp.Abs, sp.sign, sp.asin, sp.acos, sp.atan, sp.Pow):
         if not f.is_Pow or (f.exp.is_Rational and not f.exp.is_Integer):
             branchy |= f.free_symbols
-    shown = sorted(branchy or answer.free_symbols, key=str)[:4]
+    shown = sorted(cases, key=str) + sorted(branchy - cases, key=str)
+    shown = (shown or sorted(answer.free_symbols, key=str))[:5]
     at = ", ".join(f"{s} = {float(mpmath.re(p[s])):.3g}" for s in shown if s in p)
+    if cases:
+        advice = ("check the cases of your answer (Max, Min, Piecewise, Heaviside): the formula "
+                 "must hold on the whole domain")
+    elif branchy:
+        advice = ("check a root of a square (sqrt(x**2) is |x|) or the branch of an inverse "
+                 "function (asin(sin(x)) is x only for |x| <= pi/2)")
+    else:
+        advice = ("a term or factor that is negligible at moderate values of the symbols is not "
+                 "at others (try large and small values)")
     return ("your answer is right at some admissible values and wrong at others (for example "
-            f"at {at}): it holds on only part of the domain the exercise states; check a root "
-            "of a square (sqrt(x**2) is |x|) or the branch of an inverse function (asin(sin(x)) "
-            "is x only for |x| <= pi/2)")
+            f"at {at}): it holds on only part of the domain the exercise states; {advice}")

@@ -309,22 +309,29 @@ def _judge_expression(ex, part, answer, names, domain, max_length, read, graded=
     seed = zlib.crc32(f"{ex.id}:{part.name}".encode())
     extra = sorted((s for s in expr.free_symbols if s not in part.variables), key=str)
     if extra:
-        pts = domain.points(seed, 4)
+        # the seed's points, then fresh ones: a dependence hidden from known points is seen
+        pts = domain.points(seed, 4, core=True)
         fn = _Fn(expr, domain.symbols)
         bad = [s for s in extra if depends_on(fn, s, pts[0], pts, domain)]
+        if not bad:
+            more = pts[:1] + domain.points(seed) + domain.fresh()
+            bad = [s for s in extra if depends_on(fn, s, more[0], more, domain, most=None)]
         if bad:
             why = "; ".join(part.why_not[s.name] for s in bad if s.name in part.why_not)
             return Feedback(False, f"Your answer depends on {', '.join(map(str, bad))}, which it "
                             f"should not" + (f" ({why})" if why else "") + f": {part.listing()}",
                             ex.id, part.name)
-        expr = expr.xreplace({s: pts[0][s] for s in extra})
+        if not part.expected.free_symbols:
+            # a number: its value where the symbols it does not depend on take any value
+            expr = expr.xreplace({s: pts[0][s] for s in extra})
+        # an expression keeps them: the comparison below varies them over the domain too
     if not part.expected.free_symbols and not expr.free_symbols:
         return _check_number(ex, part, expr, graded)
     verdict = compare(expr, part.expected, domain, seed, part.sign_note, part.rtol)
     if verdict.ok:
         return Feedback(True, part.success or f"{part.what} is right.", ex.id, part.name)
     for wrong, message in part.wrong:
-        if equal(expr, wrong, domain, seed):
+        if equal(expr, wrong, domain, seed, fresh=False):
             return Feedback(False, message, ex.id, part.name)
     other = _other_part(ex, part, expr, domain, seed,
                         terms=verdict.hint.startswith("your answer is not equal"))
@@ -340,7 +347,7 @@ def _other_part(ex, part, expr, domain, seed, terms=True):
         for name, other in ex.parts.items():
             if name == part.name or other.is_choice or not other.expected.free_symbols:
                 continue
-            if equal(expr, other.expected, domain, seed):
+            if equal(expr, other.expected, domain, seed, fresh=False):
                 return (f"That is the answer to part {name!r} ({other.what}), not to this "
                         f"one: {part.what}.")
         if not terms:
@@ -354,7 +361,7 @@ def _other_part(ex, part, expr, domain, seed, terms=True):
                 continue
             for t in terms:
                 for sign, what in ((1, "an extra term"), (-1, "a term missing")):
-                    if equal(diff, sign * t, domain, seed):
+                    if equal(diff, sign * t, domain, seed, fresh=False):
                         return (f"Your answer has {what}, one of the terms of part {name!r} "
                                 f"({other.what}): that term does not belong to "
                                 f"{part.what}." if sign == 1 else
