@@ -370,6 +370,72 @@ DOMAIN = {
 }
 
 
+# the four checked numerics exercises (issue 36, chapter 15): fixed steps or exact
+# arithmetic, so the stored answers do not depend on an integrator's internals
+CASES_ADD = {
+    ("fixed-step-order", "error_rk4"): (
+        [1.5082367776919625e-6, "1.50824e-6", "0.0000015082"],
+        [(1.5e-6, "too small"), (3.0e-6, "too large"), (-1.5082367776919625e-6, "sign")]),
+    ("fixed-step-order", "order_rk4"): (
+        [4.038497705343936, "4.0385", "4.03850"],
+        [(4, "order observed"), (3.9, "too small"), (-4.0385, "sign")]),
+    ("fixed-step-order", "order_midpoint"): (
+        [1.993637752028973, "1.99364", "1.9936"],
+        [(2, "order observed"), (1.9, "too small"), (4.0, "too large")]),
+    ("stiff-sleigh", "rate"): (
+        [24.979983974348684, "(50 + sqrt(2492))/4", "12.5 + sqrt(155.75)"],
+        [(0.02002, "too small"), (50.0, "too large"), (-24.979983974348684, "sign")]),
+    ("stiff-sleigh", "steps"): (
+        [2691, "2691", 2691.0],
+        [(2690, "round the number of steps up"), (5385, "too large"), (-2691, "sign")]),
+    ("stiff-sleigh", "method"): (
+        ["implicit", "Radau", "LSODA"],
+        [("explicit", "stability interval"), ("DOP853", "stability interval"),
+         ("tighter", "stability, not by accuracy")]),
+    ("sqrt-roundoff", "digits"): (
+        [9, "9", 9.0],
+        [(16, "too large"), (8, "too small"), (-9, "sign")]),
+    ("sqrt-roundoff", "rel_error"): (
+        [7.318153711583938e-8, "7.318154e-8", "7.3181537e-08"],
+        [(1.1e-16, "too small"), (1e-7, "too large"), (-7.318153711583938e-8, "sign")]),
+    ("sqrt-roundoff", "form"): (
+        ["factored", "product", "  Factored "],
+        [("expanded", "measured in part 2"), ("clip", "digits lost"),
+         ("naive", "measured in part 2")]),
+    ("long-run-dla", "rk4_energy"): (
+        [0.0005062659878081633, "5.06266e-4", "0.000506266"],
+        [(0.0005, "too small"), (0.001, "too large"), (-0.0005062659878081633, "sign")]),
+    ("long-run-dla", "dla_phase"): (
+        [2.007043850036439, "2.00704385", "3200*(pi/16 - 2*atan(pi/32))"],
+        [(2.0, "too small"), (6.3, "too large"), (-2.007043850036439, "sign")]),
+    ("long-run-dla", "keeps"): (
+        ["DLA", "dla", "the DLA"],
+        [("RK4", "compare the energy errors"), ("both", "loses energy"),
+         ("neither", "energy error")]),
+}
+MORE_GOOD_ADD = {
+    ("stiff-sleigh", "steps"): ["2691.0000"],
+    ("long-run-dla", "keeps"): ["  DLA "],
+}
+DOMAIN_ADD = {
+    ("fixed-step-order", "error_rk4"): (1.5e-6, "too small"),
+    ("fixed-step-order", "order_rk4"): (4, "order observed"),
+    ("fixed-step-order", "order_midpoint"): (2, "order observed"),
+    ("stiff-sleigh", "rate"): (49.98999799919968, "too large"),
+    ("stiff-sleigh", "steps"): (2690, "round the number of steps up"),
+    ("stiff-sleigh", "method"): ("explicit", "stability interval"),
+    ("sqrt-roundoff", "digits"): (16, "too large"),
+    ("sqrt-roundoff", "rel_error"): (1.1e-16, "too small"),
+    ("sqrt-roundoff", "form"): ("clip", "digits lost"),
+    ("long-run-dla", "rk4_energy"): (0.0, "too small"),
+    ("long-run-dla", "dla_phase"): (0.0, "too small"),
+    ("long-run-dla", "keeps"): ("RK4", "energy errors"),
+}
+CASES.update(CASES_ADD)
+MORE_GOOD.update(MORE_GOOD_ADD)
+DOMAIN.update(DOMAIN_ADD)
+
+
 def test_every_part_has_cases():
     assert sorted(CASES) == sorted(ALL_PARTS) == sorted(DOMAIN)
     for key, (good, bad) in CASES.items():

@@ -155,6 +155,23 @@ def test_fast_sleigh_is_stiff_and_gets_an_implicit_or_switching_method(sleigh):
     assert _rel(tr(grid), ref.q, ("x", "theta", "y")) <= 1e-6
 
 
+def test_the_whole_call_counts_each_run_once_and_returns_the_tighter_one(sleigh):
+    """Issue 33 (c): the call's cost is every run it made, each counted once (LSODA's
+    nfev already holds its difference-quotient Jacobians; an rtol run twice is not run
+    again), plus the stiffness test; the run returned is the tighter of the accepted
+    pair (rtol / 10), no more work and more accurate.  Counts, not timings."""
+    for tol in (1e-6, 1e-9):
+        tr = sleigh.simulate(FAST_Q0, FAST_QD0, (0, 300), FAST, tol=tol)
+        c = tr.choice
+        assert c.method == "LSODA" and all(t[1] == "LSODA" for t in c.tried)
+        looser = [t[2] for t in c.tried]
+        assert looser == sorted(looser, reverse=True) and len(set(looser)) == len(looser)
+        assert c.rtol == pytest.approx(looser[-1] / 10)        # the tighter run of the pair
+        # every distinct rtol once: the looser run of each rung, and the last check run
+        assert c.nfev_all == sum(t[4] for t in c.tried) + tr.nfev + 2 * 6
+        assert c.check_nfev == c.tried[-1][4]
+
+
 def test_oscillations_are_not_stiff_and_get_an_explicit_method(S, sleigh):
     """The sledge (b = 0: rates +-i, no decay) and the slow sleigh of chapter 7: DOP853."""
     from whittaker_teach.numerics.scene import stiffness

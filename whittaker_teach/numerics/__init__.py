@@ -9,6 +9,7 @@ and ``ivp`` integrates; nothing calls back into an entry:
 ``time_model``              entry: the full model in t, ``ChaplyginSystem.simulate``
 ``reduced_model``           entry: the reduced model (1.26) in q_eps, ``Reduction.simulate``
 ``integrators``             entry: the discrete Lagrange-d'Alembert integrator (``method="DLA"``)
+``fixed_step``               Euler, midpoint and RK4 with a fixed step: orders, stability (chapter 15)
 ``exact``                   entry: the sledge in closed form (Bessel functions)
 ``scene``                   ``simulate(..., tol=...)``: picks the model and the method
 ``validate``                every check of the numerical input (ModelError naming the mistake)
@@ -96,7 +97,8 @@ _register()
 
 __all__ = ["MissingExtraError", "require_extra", "simulate", "codegen", "time_model", "reduced_model",
            "integrators", "exact", "scene",
-           "work_precision", "hard_cases", "results", "validate", "figures", "ivp"]
+           "work_precision", "hard_cases", "results", "validate", "figures", "ivp",
+           "fixed_step"]
 
 
 def __getattr__(name):

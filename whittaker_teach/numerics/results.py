@@ -64,11 +64,13 @@ class Choice:
 
     ``model`` ('exact', 'full' or 'reduced'), ``method``, ``rtol`` (None for the
     closed form), ``tol`` (the relative error asked for), ``error`` (the estimated
-    relative error: for an integration, the difference from a run ten times
-    tighter; for the closed form, its rounding error), ``why`` (plain words),
+    relative error: for an integration, the difference between the runs at ten
+    times ``rtol`` and at ``rtol``, the error of the looser one; the run returned, at
+    ``rtol``, is normally more accurate still; for the closed form, its rounding
+    error), ``why`` (plain words),
     ``tried``: every run made on the way, as (model, method, rtol, estimated
-    error, evaluations); ``check_nfev``: the evaluations of the run that checked
-    the chosen one; ``stiffness``: the :class:`~.scene.Stiffness` test of a full-model
+    error, evaluations); ``check_nfev``: the evaluations of the other run of the
+    accepted pair; ``stiffness``: the :class:`~.scene.Stiffness` test of a full-model
     integration (None otherwise); ``nfev_all``: every evaluation the choice made.  ``str(choice)`` is the explanation.
     """
 

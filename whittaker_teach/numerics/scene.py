@@ -25,7 +25,14 @@ candidates are tried cheapest first:
    otherwise DOP853 runs too and the cheaper of the two chosen runs is kept.
    atol tiny, rtol = tol / 10 to start.  The error is *estimated*, not assumed:
    the run is repeated at rtol / 10 and the difference is the estimate; if it
-   exceeds ``tol`` the tolerance is tightened, down to scipy's smallest, 2.3e-14.
+   exceeds ``tol`` the tolerance is tightened, down to scipy's smallest, 2.3e-14
+   (the tighter run of a failed pair is the looser of the next: each rtol is run
+   once).  Of the accepted pair a full-model integration returns the *tighter*
+   run: the estimate is that of the looser run, and the tighter one is normally
+   more accurate still, for no extra work (the reduced model still returns the
+   looser run, whose error the estimate is).  Its cost is the whole call: both
+   runs of every rung tried and the stiffness test (``choice.nfev_all``; each
+   evaluation counted once).
 
 If no candidate reaches ``tol``, a ModelError gives the best error available.
 The result is the usual :class:`~.results.Trajectory` or :class:`~.results.Path`
@@ -288,10 +295,18 @@ def stiffness(system, q0, qdot0, t_span, params):
     return Stiffness(rate, lam, float(floor), bool(floor >= STIFF_FLOOR))
 
 
-def _cost(res, n):
-    """Evaluations of one run: nfev, plus n for each Jacobian (what a difference quotient
-    of n columns costs; counted even where scipy already counts them in nfev)."""
-    return res.nfev + n * getattr(res, "njev", 0)
+#: the methods whose ``nfev`` leaves out the evaluations of their difference-quotient
+#: Jacobians (scipy's ``num_jac`` calls the right-hand side past the counter); LSODA's
+#: ``nfev`` (ODEPACK's NFE) already includes them, and DOP853 forms no Jacobian
+JAC_UNCOUNTED = ("Radau", "BDF")
+
+
+def _cost(res, n, method="DOP853"):
+    """Evaluations of one run: nfev, plus n for each Jacobian where scipy leaves the
+    difference quotient of n columns out of nfev (:data:`JAC_UNCOUNTED`), so that each
+    evaluation of the right-hand side is counted once."""
+    extra = n * getattr(res, "njev", 0) if method in JAC_UNCOUNTED else 0
+    return res.nfev + extra
 
 
 # ----------------------------------------------------------------- integrations
@@ -318,26 +333,37 @@ def _ladder(tol):
     return out
 
 
-def _integrate(run, compare, tol, model, tried, method="DOP853", n=0):
-    """Climb the ladder: (result, rtol, error) of the first run whose estimated error (its
-    difference from a run ten times tighter) is within tol; (None, best) otherwise.
-    ``run(rtol, check)``: ``check`` is True for the run that only checks another (it
-    may skip the dense output, which costs DOP853 three evaluations a step)."""
+def _integrate(run, compare, tol, model, tried, method="DOP853", n=0, keep_tighter=False):
+    """Climb the ladder: the first pair of runs, at rtol r and r/10, whose difference (the
+    estimated error of the run at r) is within tol.  Returns (result, its rtol, the
+    estimate, (evaluations of the other run of the pair, of every run made)), or (None,
+    rtol, best estimate, None) if no rung reaches tol.
+
+    ``run(rtol, check)`` makes one run (``check`` is True for the tighter run of a pair).
+    The runs are cached by rtol alone, so the tighter run of a failed rung is the looser
+    run of the next one, not made again: every run at a given rtol must be the same run.
+    ``keep_tighter``: return the tighter run of the accepted pair (its error is normally
+    smaller still than the estimate, which is that of the looser run) instead of the
+    looser one; the work is the same, the result more accurate."""
     cache = {}
 
     def at(r, check):
-        if (r, check) not in cache:
-            cache[r, check] = run(r, check)
-        return cache[r, check]
+        if r not in cache:
+            cache[r] = run(r, check)
+        return cache[r]
     best = None
     for r in _ladder(tol):
-        res, ref = at(r, False), at(max(r / 10, MIN_RTOL), True)
+        r_ref = max(r / 10, MIN_RTOL)
+        res, ref = at(r, False), at(r_ref, True)
         err = compare(res, ref)
-        tried.append((model, method, r, err, _cost(res, n)))
+        tried.append((model, method, r, err, _cost(res, n, method)))
         if best is None or err < best[2]:
             best = (res, r, err)
         if err <= tol:
-            return res, r, err, (_cost(ref, n), sum(_cost(v, n) for v in cache.values()))
+            total = sum(_cost(v, n, method) for v in cache.values())
+            if keep_tighter:
+                return ref, r_ref, err, (_cost(res, n, method), total)
+            return res, r, err, (_cost(ref, n, method), total)
     return None, best[1], best[2], None
 
 
@@ -406,8 +432,8 @@ def _full_within(S, q0, qdot0, t_span, params, *, tol, model, method, rtol, atol
     grid = t_eval if t_eval is not None else np.linspace(t_span[0], t_span[1], POINTS)
 
     def runner(method):
-        def run(r, check):
-            d = (not check and dense) if t_eval is not None else True
+        def run(r, check):            # the same run whichever of a pair it is: either may be kept
+            d = dense if t_eval is not None else True
             return S.simulate(q0, qdot0, t_span, params, method=method, rtol=r, atol=ATOL,
                               t_eval=t_eval, dense=d)
         return run
@@ -422,15 +448,16 @@ def _full_within(S, q0, qdot0, t_span, params, *, tol, model, method, rtol, atol
     found = {}
     if st.stiff:
         found[STIFF_METHOD] = _integrate(runner(STIFF_METHOD), compare, tol, "full", tried,
-                                         STIFF_METHOD, n)
+                                         STIFF_METHOD, n, keep_tighter=True)
     lsoda = found.get(STIFF_METHOD)
     if lsoda is None or lsoda[0] is None or lsoda[3][1] > st.floor:
-        found["DOP853"] = _integrate(runner("DOP853"), compare, tol, "full", tried)
+        found["DOP853"] = _integrate(runner("DOP853"), compare, tol, "full", tried,
+                                     keep_tighter=True)
     reached = {m: v for m, v in found.items() if v[0] is not None}
     if not reached:
         method, (_, r, err, _) = min(found.items(), key=lambda kv: kv[1][2])
         raise _no_model(tol, S.name, "full model", r, err, method)
-    method = min(reached, key=lambda m: (_cost(reached[m][0], n), m))
+    method = min(reached, key=lambda m: (_cost(reached[m][0], n, m), m))
     tr, r, err, counts = reached[method]
     everything = sum(v[3][1] for v in reached.values()) + 2 * n      # + the stiffness test
     closed = ("model='full' was asked; " if model == "full" else
@@ -445,12 +472,13 @@ def _full_within(S, q0, qdot0, t_span, params, *, tol, model, method, rtol, atol
     if method == STIFF_METHOD:
         dop = found.get("DOP853")
         how = (f": {stab}; so {STIFF_METHOD} runs, a switching method: Adams steps while "
-               f"the motion is not stiff, BDF steps with the Jacobian while it is (a "
-               f"Jacobian counted as {n} evaluations)" + ("" if dop is None else
+               f"the motion is not stiff, BDF steps with the Jacobian while it is (its "
+               f"difference-quotient Jacobians are in its count)" + ("" if dop is None else
                                   f", cheaper than DOP853 ({_cost(dop[0], n)} evaluations)"
                                   if dop[0] is not None else ", DOP853 not reaching tol"))
     elif st.stiff:
-        cost = "not reaching tol" if lsoda[0] is None else f"{_cost(lsoda[0], n)} evaluations"
+        cost = ("not reaching tol" if lsoda[0] is None
+                else f"{_cost(lsoda[0], n, STIFF_METHOD)} evaluations")
         how = (f": {stab}; but {STIFF_METHOD} cost more ({cost} for its chosen run), so "
                f"DOP853, the cheapest by evaluations in the sledge study")
     else:
@@ -459,9 +487,11 @@ def _full_within(S, q0, qdot0, t_span, params, *, tol, model, method, rtol, atol
                f"costs DOP853's stability at most {st.floor:.0f} evaluations over the span "
                f"(below {STIFF_FLOOR})")
     tr.choice = Choice("full", method, r, tol, err, (
-        f"{lead}{how}; rtol {r:.1e} is the loosest whose estimated error (against a run "
-        f"at rtol/10) is within tol ({everything} evaluations in all, with the {2 * n} of the "
-        f"stiffness test)"), tried, counts[0], st, everything)
+        f"{lead}{how}; rtol {10 * r:.1e} is the loosest whose run differs from the one at "
+        f"rtol/10 by no more than tol (the estimated error of the looser run); the run "
+        f"returned is the tighter one, at rtol {r:.1e}, more accurate still for the same "
+        f"work ({everything} evaluations in all, with the {2 * n} of the stiffness test)"),
+        tried, counts[0], st, everything)
     if not dense and t_eval is None:
         tr._dense = None
     return tr

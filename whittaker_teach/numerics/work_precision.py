@@ -634,10 +634,19 @@ LABEL = {"full": "full model (default form), in t", "full (1.4)": "full model, p
          "numpy+scipy": "hand-written numpy + scipy", "exact": "exact (1000 points): the limit"}
 
 
-def plot(results, path=None, targets=TARGETS):
-    """Log-log relative error against the median wall time, one panel per amplitude; the
-    cheapest run of each model for each target and the floor is ringed.  Saved
-    (deterministic SVG) if ``path`` is given; returns the figure."""
+def plot(results, path=None, targets=TARGETS, cost="nfev"):
+    """Log-log relative error against the cost of each run, one panel per amplitude; the
+    cheapest run of each model for each target and the floor, by evaluations, is ringed.
+    ``cost="nfev"`` (the default): the horizontal axis is the chapter's cost, the
+    right-hand-side evaluations (the exact solution, with none, is left off the axis);
+    ``cost="seconds"``: the median wall time per run, with the exact solution as a
+    dashed vertical line (a figure of time, to be named as such).  Saved (deterministic
+    SVG) if ``path`` is given; returns the figure."""
+    if cost not in ("nfev", "seconds"):
+        raise ValueError(f"cost = {cost!r}: 'nfev' or 'seconds'")
+
+    def x(r):
+        return r["nfev"] if cost == "nfev" else 1e3 * r["seconds"]
     import matplotlib
     if path is not None and "matplotlib.pyplot" not in sys.modules:
         matplotlib.use("Agg")
@@ -654,26 +663,29 @@ def plot(results, path=None, targets=TARGETS):
         for ax, a in zip(axes[0], amps):
             done = [r for r in _done(results) if r["amplitude"] == a]
             for model in MODELS:
+                if cost == "nfev" and model == "exact":
+                    continue                     # no evaluations: nothing to plot on a log axis
                 for m in sorted({r["method"] for r in done if r["model"] == model}):
                     rs = [r for r in done if r["model"] == model and r["method"] == m]
                     ls, mk = STYLE[model]
-                    ax.loglog([1e3 * r["seconds"] for r in rs],
+                    ax.loglog([x(r) for r in rs],
                               [max(r["error"], 1e-17) for r in rs], ls=ls, marker=mk,
                               color=colors.get(m, "k"), ms=5 if model != "exact" else 13,
                               lw=1.2, alpha=0.85)
             ringed = {id(r): r for row in best[a].values() for mod, r in row.items()
                       if r is not None and mod != "exact"}
-            ax.plot([1e3 * r["seconds"] for r in ringed.values()],
+            ax.plot([x(r) for r in ringed.values()],
                     [max(r["error"], 1e-17) for r in ringed.values()], "o", ms=12, mfc="none",
                     mec="k", mew=1.2, zorder=5)
             ex = [r for r in done if r["model"] == "exact"]
-            if ex:
+            if ex and cost == "seconds":
                 ax.axvline(1e3 * ex[0]["seconds"], color="k", lw=0.8, ls="--", zorder=1)
             for tgt in targets:
                 ax.axhline(tgt, color="0.45", lw=0.9, ls=(0, (4, 4)), zorder=2)
             ax.set_ylim(1e-16, None)
             ax.set_title(f"a = {a:g}, {results['meta']['periods']} periods")
-            ax.set_xlabel("wall time per run [ms]")
+            ax.set_xlabel("right-hand-side evaluations per run (nfev)" if cost == "nfev"
+                          else "wall time per run [ms]")
             ax.grid(True, which="major", color="0.92", zorder=0)
             ax.set_axisbelow(True)
         axes[0][0].set_ylabel("largest relative error (θ, x, y, t)")
@@ -681,7 +693,8 @@ def plot(results, path=None, targets=TARGETS):
         handles = [Line2D([], [], color=colors[m], lw=2, label=m) for m in METHODS + (TIGHT,)
                    if m in shown]
         handles += [Line2D([], [], color="0.3", ls=STYLE[k][0] or "none", marker=STYLE[k][1],
-                           ms=5 if k != "exact" else 10, label=LABEL[k]) for k in MODELS]
+                           ms=5 if k != "exact" else 10, label=LABEL[k]) for k in MODELS
+                    if cost == "seconds" or k != "exact"]
         handles.append(Line2D([], [], ls="none", marker="o", ms=11, mfc="none", mec="k",
                               label="cheapest run per target (by evaluations)"))
         fig.legend(handles=handles, loc="lower center", ncol=2, fontsize=10, frameon=False)
