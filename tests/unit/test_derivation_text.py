@@ -440,21 +440,29 @@ def test_ch6_payoff_intrinsic_equation_parsed_equals_the_library(sleigh_by_headi
 def test_ch6_payoff_closed_form_and_turning_angle(sleigh_by_heading):
     red, m, J, b = sleigh_by_heading
     text = _section(CH6, PAYOFF)
-    assert _shows(text, r"\rho(\theta)=\sqrt{\frac{J+mb^2}{m}}\,\tan\big(\beta(\theta-\theta_0)\big)")
-    assert _shows(text, r"\beta = b\sqrt{\frac{m}{J+mb^2}}")
-    assert _shows(text, r"\pi/\beta = \pi\sqrt{(J+mb^2)/(mb^2)}")
+    assert _shows(text, r"\rho(\theta)=\sqrt{\frac{J+mb^2}{m}}\,\tan\big(\alpha(\theta-\theta_0)\big)")
+    assert _shows(text, r"\alpha = b\sqrt{\frac{m}{J+mb^2}} < 1")
+    assert _shows(text, r"\pi/\alpha = \pi\sqrt{(J+mb^2)/(mb^2)}")
+    # the constant is not called beta: beta is the paper's index of the dependent coordinates
+    assert not re.search(r"\\beta\s*(=|\(\\theta|\\to)", text)
+    assert not re.search(r"\\pi/\(?2?\\beta", text)
+    # the derivation with the split (3.2) says how it passes cos(theta) = 0
+    assert "crosses $\\cos\\theta = 0$" in text and "by continuity" in text
     th, th0 = red.independent, sp.Symbol("theta_0")
     rate = b * (1 + m * sp.Symbol("rho")**2 / (J + m * b**2))
-    for beta, good in ((b * sp.sqrt(m / (J + m * b**2)), True), (b * sp.sqrt(m / J), False)):
-        rho = sp.sqrt((J + m * b**2) / m) * sp.tan(beta * (th - th0))
+    for alpha, good in ((b * sp.sqrt(m / (J + m * b**2)), True), (b * sp.sqrt(m / J), False)):
+        rho = sp.sqrt((J + m * b**2) / m) * sp.tan(alpha * (th - th0))
         residual = sp.simplify((rho.diff(th) - rate.subs(sp.Symbol("rho"), rho)).rewrite(sp.cos))
         assert (residual == 0) is good
-    # the number printed under the comparison in time: pi/beta for m = J = b = 1
+    # alpha < 1 for every m, J > 0, b: the total turn exceeds pi
+    mm, JJ, bb = sp.symbols("m J b", positive=True)
+    assert sp.simplify(mm * bb**2 / (JJ + mm * bb**2) - 1) == -JJ / (JJ + mm * bb**2)
+    # the number printed under the comparison in time: pi/alpha for m = J = b = 1
     cells = _notebook(CH6)["cells"]
     (cell,) = [c for c in cells if c["id"] == "ch6-p06"]
     out = "".join("".join(o.get("text", "")) for o in cell["outputs"])
-    assert f"pi sqrt((J + m b^2)/(m b^2)) = {math.pi * math.sqrt(2):.4f} rad" in out
-    assert f"theta_0 + pi/(2 beta) = {math.pi / math.sqrt(2):.6f}" in out
+    assert f"pi/alpha = pi sqrt((J + m b^2)/(m b^2)) = {math.pi * math.sqrt(2):.4f} rad" in out
+    assert f"theta_0 + pi/(2 alpha) = {math.pi / math.sqrt(2):.6f}" in out
     assert out.count(": True") == 2 and "False" not in out
 
 
