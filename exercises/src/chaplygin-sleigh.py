@@ -28,7 +28,7 @@ EXERCISE = {
     "equations": "1.16, 1.26",
     "solvers": True,     # the statement gives the reduction to work with
     "symbols": "x xdot+ y ydot theta thetadot thetaprime thetaprimeprime h m+ J+ k+ b+ Jeff+",
-    "domain": {"x": [0.0, 2.0], "xdot": "speed", "theta": "angle", "thetadot": "slope",
+    "domain": {"x": "real", "xdot": "speed", "theta": "angle", "thetadot": "slope",
                "ydot": "slope", "thetaprime": "slope", "h": "energy"},
     "conditions": ["2*h - k^2*theta^2"],
     "parts": {

@@ -28,7 +28,7 @@ EXERCISE = {
     "equations": "1.22, 1.23, 1.26, 3.8",
     "solvers": False,
     "symbols": "x xdot+ y ydot theta thetadot thetaprime thetaprimeprime h m+ J+ k+",
-    "domain": {"x": [0.0, 2.0], "xdot": "speed", "theta": "angle", "thetadot": "slope",
+    "domain": {"x": "real", "xdot": "speed", "theta": "angle", "thetadot": "slope",
                "ydot": "slope", "thetaprime": "slope", "h": "energy"},
     "conditions": ["2*h - k^2*theta^2"],
     "parts": {

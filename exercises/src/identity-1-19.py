@@ -32,7 +32,7 @@ EXERCISE = {
     "equations": "1.14, 1.17, 1.19",
     "solvers": False,
     "symbols": "x xdot+ theta thetaprime h m+ J+ b+ k+",
-    "domain": {"x": [0.0, 2.0], "xdot": "speed", "theta": "turn", "thetaprime": "slope",
+    "domain": {"x": "real", "xdot": "speed", "theta": "real", "thetaprime": "slope",
                "h": "energy"},
     "parts": {
         "dxdot_dthetaprime": {

@@ -31,8 +31,8 @@ EXERCISE = {
     "equations": "1.16, 1.27",
     "solvers": False,
     "symbols": "r+ rprime rprimeprime theta h m+ mu+ p+ e",
-    "domain": {"r": [0.5, 3.0], "rprime": "slope", "rprimeprime": [-1.0, 1.0], "theta": "turn",
-               "h": [-1.0, 3.0], "e": [0.0, 3.0]},
+    "domain": {"r": "positive", "rprime": "slope", "rprimeprime": "real", "theta": "turn",
+               "h": "energy", "e": [0.0, None]},
     "conditions": ["h + m*mu/r"],
     "parts": {
         "L_star": {

@@ -28,8 +28,8 @@ EXERCISE = {
     "equations": "2.1, 2.4, 1.26",
     "solvers": False,
     "symbols": "r+ rprime rprimeprime theta h m+ mu+",
-    "domain": {"r": [0.5, 3.0], "rprime": "slope", "rprimeprime": [-1.0, 1.0], "theta": "turn",
-               "h": [-1.0, 3.0]},
+    "domain": {"r": "positive", "rprime": "slope", "rprimeprime": "real", "theta": "turn",
+               "h": "energy"},
     "conditions": ["h + m*mu/r"],
     "parts": {
         "total_derivative": {

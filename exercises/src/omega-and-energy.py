@@ -37,7 +37,7 @@ EXERCISE = {
     "equations": "1.5, 1.6, 1.12, 1.13",
     "solvers": False,
     "symbols": "theta thetadot+ psi psiprime psidot h m+ R+ A+ C+ k+",
-    "domain": {"theta": "turn", "thetadot": "speed", "psi": "turn", "psiprime": "slope",
+    "domain": {"theta": "real", "thetadot": "speed", "psi": "real", "psiprime": "slope",
                "psidot": "slope", "h": "energy"},
     "conditions": ["2*h - k^2*psi^2"],
     "parts": {

@@ -32,8 +32,8 @@ EXERCISE = {
     "equations": "1.5, 1.12, 1.16, 1.27",
     "solvers": False,
     "symbols": "x y yprime yprimeprime h m+ g_0+ v0+ alpha",
-    "domain": {"x": [0.0, 3.0], "y": [-1.0, 1.0], "yprime": "slope", "yprimeprime": [-1.0, 1.0],
-               "h": "energy", "alpha": [0.001, 1.5707]},
+    "domain": {"x": [0.0, None], "y": "real", "yprime": "slope", "yprimeprime": "real",
+               "h": "energy", "alpha": [0.0, 1.5707963267948966]},
     "conditions": ["h - m*g_0*y"],
     "notes": {"g": "gravity is g_0 (also g0 or g₀); the paper's g counts the constraints"},
     "parts": {

@@ -28,8 +28,8 @@ EXERCISE = {
     "equations": "1.5, 1.12, 3.12, 3.15",
     "solvers": True,
     "symbols": "x xdot+ theta thetaprime t h C+ a+ m+ J+ k+",
-    "domain": {"x": [0.0, 2.0], "xdot": "speed", "theta": "angle", "thetaprime": "slope",
-               "t": [0.0, 3.0], "h": "energy", "a": [1.5709, 6.0]},
+    "domain": {"x": "real", "xdot": "speed", "theta": "angle", "thetaprime": "slope",
+               "t": [0.0, None], "h": "energy", "a": [1.5707963267948966, None]},
     "definitions": {"omega": "k/sqrt(J)"},
     "parts": {
         "xdot": {
