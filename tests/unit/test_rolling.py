@@ -47,6 +47,39 @@ def test_rattleback_odd_coefficients(quartic):
     assert a[1].subs(I12, 0) == 0
 
 
+def test_odd_coefficient_in_the_moments_and_the_misalignment(quartic):
+    """The horizontal block of I + m h^2 has det (A + m h^2)(B + m h^2), so
+    a3 = -m h (rho_1 - rho_2) Omega sin(delta) cos(delta) (1/(B + m h^2) - 1/(A + m h^2))."""
+    rv, a = quartic
+    m, g, h, r1, r2, A, B, C, delta = rv.parameters
+    a3 = a[1].xreplace(rv.products)
+    form = (-m * h * (r1 - r2) * OMEGA * sp.sin(delta) * sp.cos(delta)
+            * (1 / (B + m * h**2) - 1 / (A + m * h**2)))
+    S, Cs = sp.symbols("S Cs")                         # sin(delta), cos(delta)
+
+    def on_circle(e):                                  # numerator mod S^2 + Cs^2 - 1
+        e = e.xreplace({sp.sin(delta): S, sp.cos(delta): Cs})
+        return sp.expand(sp.rem(sp.expand(sp.numer(sp.together(e))), S**2 + Cs**2 - 1, S))
+
+    assert on_circle(a3 - form) == 0
+    assert on_circle(a3 - form.subs(r2, 2 * r2)) != 0  # the identity is not vacuous
+
+
+def _worst(A, spin, vals):
+    return max(z.real for z in spin_rates(A, spin, vals) if abs(z) > 1e-12)
+
+
+def test_good_direction_stable_only_at_fast_spin(linear):
+    """The toy: Omega > 0 is (spectrally) stable above about 38.8 rad/s, unstable below;
+    Omega < 0 stays unstable."""
+    rv, A = linear
+    vals = rv.values(TOY)
+    assert _worst(A, 38.5, vals) > 0
+    assert _worst(A, 39.0, vals) < 0
+    assert _worst(A, 60, vals) < 0
+    assert _worst(A, -60, vals) > 1
+
+
 def test_rattleback_at_rest_rocks_with_the_textbook_frequencies(quartic):
     """Known answer: without misalignment and spin, the body rocks about each axis like a
     rounded rocker, omega_i^2 = m g (rho_i - h) / (I_G + m h^2) (rho_1 about y, rho_2 about x)."""
@@ -114,6 +147,7 @@ def test_ball_constraints_are_rolling():
     import sympy.physics.mechanics as me
     ball = rolling.chaplygin_ball()
     x, y, a, b, c = ball.coordinates
+    assert [q.func.__name__ for q in (a, b, c)] == ["alpha", "beta", "chi"]   # not gamma
     R = ball.parameters[3]
     N = me.ReferenceFrame("N")
     F = N.orientnew("F", "Body", [a, b, c], "ZXZ")

@@ -3,9 +3,10 @@ Play/Pause button, a slider; no external script, no server) whose frames come fr
 simulation (:func:`whittaker_teach.rolling.simulate.simulate_rattleback`), decimated and
 rounded so that the stored output is small and the same at every run.
 
-Three panels: the body seen from above (its rim and keel, a dot at the +x end), seen
-from the side (projected on the vertical x-z plane, the table as a line), and the spin
-rate (gamma . omega) against time with a cursor.  The container carries
+Three panels: the body seen from above (its rim, a dot at the +x end, a 2 cm scale
+bar), seen from the side (the keel, the bottom's section y = 0, and the rim projected
+on the vertical space x-z plane, the table as a line), both at 1 px = 1 mm of the
+canvas, and the spin rate (gamma . omega) against time with a cursor.  The container carries
 ``data-frame`` (the frame shown), which the browser test reads.
 
 >>> html = rattleback_animation([0.0, 0.1], [1.0, 0.9], [[1, 0, 0, 0, 1, 0, 0, 0, 1]] * 2,
@@ -67,6 +68,9 @@ _TEMPLATE = """<div class="wt-anim" id="@ID@" data-frame="0" style="max-width:76
     var tip = world(f, [S.a, 0, S.top - S.h]);
     cx.fillStyle = "#c0392b"; cx.beginPath();
     cx.arc(140 + sc * tip[0], 150 - sc * tip[1], 5, 0, 2 * Math.PI); cx.fill();
+    cx.strokeStyle = "#222"; cx.lineWidth = 2; cx.beginPath();     // scale bar: 2 cm
+    cx.moveTo(30, 262); cx.lineTo(30 + 0.02 * sc, 262); cx.stroke(); cx.lineWidth = 1;
+    cx.fillStyle = "#222"; cx.fillText("2 cm", 56, 267);
     // side view
     cx.fillStyle = "#222"; cx.fillText("from the side (x-z)", 290, 20);
     cx.strokeStyle = "#555"; cx.lineWidth = 2; cx.beginPath(); cx.moveTo(280, 200);

@@ -7,7 +7,8 @@ Two descriptions, both symbolic (SymPy only):
 * :func:`chaplygin_ball` builds the ball with ``sympy.physics.mechanics`` (frames,
   a rigid body, the rolling constraint "the material point at the contact has zero
   velocity") in the coordinates x, y of the contact point and the Euler angles
-  (z-x-z) alpha, beta, gamma, and takes it in through the library's mechanics input
+  (z-x-z) alpha, beta, chi (chi, not gamma: gamma is the vertical below), and
+  takes it in through the library's mechanics input
   (:meth:`~whittaker_teach.system.ChaplyginSystem.from_lagranges_method`): a Chaplygin
   system with x, y dependent, as L and the constraints contain neither.
   :func:`contact_momentum` gives the angular momentum about the contact point.
@@ -21,7 +22,7 @@ Two descriptions, both symbolic (SymPy only):
 
 >>> ball = chaplygin_ball()
 >>> ball.dependent_coordinates, ball.independent_coordinates
-([x(t), y(t)], [alpha(t), beta(t), gamma(t)])
+([x(t), y(t)], [alpha(t), beta(t), chi(t)])
 >>> BallVectors().check_density()
 True
 """
@@ -36,7 +37,7 @@ __all__ = ["chaplygin_ball", "contact_momentum", "BallVectors"]
 def _ball_model():
     """Frames, points and the body of the ball; returns the pieces the builders need."""
     import sympy.physics.mechanics as me
-    x, y, a, b, c = me.dynamicsymbols("x y alpha beta gamma")
+    x, y, a, b, c = me.dynamicsymbols("x y alpha beta chi")
     m, R, A, B, C = sp.symbols("m R A B C", positive=True)
     N = me.ReferenceFrame("N")
     F = N.orientnew("F", "Body", [a, b, c], "ZXZ")        # body frame, principal axes

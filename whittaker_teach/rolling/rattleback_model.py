@@ -8,7 +8,10 @@ in the body frame, with axes along the principal curvatures at the bottom point,
 bottom is the paraboloid z = x^2/(2 rho_1) + y^2/(2 rho_2); the centre of mass G is at
 (0, 0, h) with h < rho_1, rho_2 (so the lowest position is a stable equilibrium at
 rest); the central inertia tensor has principal moments A, B, C about axes turned by
-delta about z.  gamma is the upward vertical in the body frame; the contact point
+delta about z (delta > 0: counterclockwise seen from above, z pointing up; the product
+term is the tensor's entry I_12 = (A - B) sin(delta) cos(delta)).  gamma is the upward
+vertical in the body frame; the spin is Omega = gamma . omega, positive counterclockwise
+seen from above; the contact point
 P(gamma) is where the bottom's outward normal is -gamma:
 P = (-rho_1 g1/g3, -rho_2 g2/g3, (rho_1 g1^2 + rho_2 g2^2)/(2 g3^2)), and
 r = P - G.  Rolling: v_G = r x omega.  Newton-Euler about G, the contact force
