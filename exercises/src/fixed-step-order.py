@@ -10,6 +10,11 @@
 # against its exact solution.
 
 # %% [markdown] statement
+# **Assumptions:** the sledge of section 3: a runner whose contact point moves only
+# along it (the non-holonomic constraint $\dot y\cos\theta - \dot x\sin\theta = 0$), a
+# torsion spring $k^2$ on the heading $\theta$, no friction; the speed $C$ along the runner
+# is then constant.
+#
 # **Model.** The sledge of section 3 in the form that (3.12)–(3.15) solve: the state
 # $u = (\theta, \dot\theta, x, y)$ with
 # $\ddot\theta = -(k^2/J)\,\theta$ (3.14), $\dot x = C\cos\theta$ (3.12),
@@ -47,12 +52,21 @@ EXERCISE = {
         "error_rk4": {
             "what": "the relative error at t = 20 of RK4 with N = 300 fixed steps",
             "points": 1, "rtol": 1e-04,
+            "wrong": [["1.409482393466277e-6",
+                       "That is an absolute error: the measure divides each component's "
+                       "error by its scale before taking the largest."]],
             "success": "That is RK4's error with 300 steps (dt = 1/15)."},
         "order_rk4": {
             "what": "the observed order of RK4 from N = 300 and N = 600 steps",
             "points": 2, "rtol": 1e-04,
             "wrong": [["4", "4 is RK4's order in theory; the question asks for the order "
-                            "observed: log2 of the ratio of your two errors."]],
+                            "observed: log2 of the ratio of your two errors."],
+                      ["4.080460019163207", "That is the order of theta's error alone: the "
+                       "error measure is, at each N, the largest of the three scaled errors "
+                       "(it is not the same component at N = 300 and at N = 600)."],
+                      ["3.9810556864856346", "That is the order of one component's error "
+                       "(or of unscaled errors): the error measure is, at each N, the largest "
+                       "of the three scaled errors."]],
             "success": "Close to 4, the order of the classical Runge-Kutta method: halving "
                        "the step divides the error by about 16."},
         "order_midpoint": {
@@ -79,6 +93,16 @@ T = 20.0
 exact = wt.examples.sledge_exact(params, a=0.5, phi=-math.pi/2, C=1.0)
 f = fs.sledge_rhs(params, C=1.0)
 u0 = [0.0, 0.5, 0.0, 0.0]                 # theta, thetadot, x, y
+print(exact(T))                           # the exact state at T, a dict
+
+# %% [markdown]
+# ## 1. One run
+#
+# Write the error measure as a function `error(method, N)` (you will need it three more
+# times), then run it once.
+
+# %%
+### BEGIN SOLUTION
 grid = [exact(T*i/400) for i in range(401)]
 scale = {"theta": 0.5, "x": max(abs(g["x"]) for g in grid),
          "y": max(abs(g["y"]) for g in grid)}
@@ -91,13 +115,10 @@ def error(method, N):
     last = dict(zip(("theta", "thetadot", "x", "y"), U[-1]))
     return max(abs(last[c] - end[c])/scale[c] for c in ("theta", "x", "y"))
 
-# %% [markdown]
-# ## 1. One run
 
-# %%
-### BEGIN SOLUTION
 error_rk4 = error("rk4", 300)
 ### END SOLUTION
+### PLACEHOLDER: error = None  # your error measure here: a function error(method, N)
 ### PLACEHOLDER: error_rk4 = None  # your answer here: a number
 error_rk4
 
@@ -132,8 +153,12 @@ check("fixed-step-order", order_midpoint, part="order_midpoint")
 
 # %% [markdown] solution
 # The whole ladder, with Euler too: the observed order settles on the method's order
-# once the step is small enough for the leading error term to dominate (Euler, order
-# 1, is still far from it at these steps; its error is of order one).
+# once the step is small enough for the leading error term to dominate. Euler, order
+# 1, is still far from it at these steps: its heading's amplitude grows by
+# $(1 + \Delta t^2)^{N/2} \approx e^{T\Delta t/2}$, an error that is linear in
+# $\Delta t$ only once $T\Delta t/2 \ll 1$. Note also that the largest of the three
+# scaled errors is $\theta$'s at $N = 300$ and $y$'s at $N = 600$: the observed order
+# of the error measure is not that of any one component.
 
 # %% solution
 for method in ("euler", "midpoint", "rk4"):

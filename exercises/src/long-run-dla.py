@@ -1,7 +1,7 @@
 # %% [markdown]
 # # A long run: DLA against RK4
 #
-# *Level: challenge (about 45 minutes). Chapter 8, "Long runs", and chapter 15.*
+# *Level: standard (about 45 minutes). Chapter 8, "Long runs", and chapter 15.*
 #
 # Over many periods what matters is how errors *grow*. A fixed-step Runge–Kutta method
 # and the discrete Lagrange–d'Alembert integrator (DLA) of chapter 8, with the same
@@ -10,6 +10,11 @@
 # oscillator.
 
 # %% [markdown] statement
+# **Assumptions:** the sledge of section 3: a runner whose contact point moves only
+# along it (the non-holonomic constraint $\dot y\cos\theta - \dot x\sin\theta = 0$), a
+# torsion spring $k^2$ on the heading $\theta$, no friction; the speed $C$ along the runner
+# is then constant.
+#
 # **Model.** The sledge of section 3, $m = J = k = 1$, from $\theta = 0$,
 # $\dot\theta = 0.5$, $\dot x = 1$ ($C = 1$, amplitude $a = 0.5$, $\omega = 1$),
 # $x = y = 0$, over 100 periods, $0 \le t \le T = 200\pi$. Its energy is
@@ -21,8 +26,12 @@
 #   equations, $u = (\theta, \dot\theta, x, y)$: `fs.integrate(fs.sledge_rhs(params,
 #   C=1), (0, T), u0, 3200, "rk4")`;
 # * **DLA**: `sledge.simulate(q0, qdot0, (0, T), params, method="DLA", dt=2*pi/32)`,
-#   the midpoint discrete Lagrangian with the constraint at the midpoint (chapter 8);
-#   on the heading oscillator it is the implicit midpoint rule.
+#   the midpoint discrete Lagrangian with the constraint at the midpoint (chapter 8):
+#   $N = \operatorname{round}(T/\texttt{dt}) = 3200$ steps of $T/N$. The velocities it
+#   reports at the points (`trajectory.qdot`) are those of the discrete momenta,
+#   $\dot\theta_k = p_k/J$ (the projection on the constraint leaves $\dot\theta$ alone),
+#   and on the heading oscillator the sequence $(\theta_k, \dot\theta_k)$ is exactly the
+#   implicit midpoint rule's.
 #
 # **Error measures.** The relative energy error at $T$, $(h - E(T))/h$. The phase
 # lag at $T$: the heading of each method is $\theta = A\sin\chi$,
@@ -48,11 +57,17 @@ EXERCISE = {
         "rk4_energy": {
             "what": "RK4's relative energy error (h - E(T))/h after 100 periods",
             "points": 2, "rtol": 1e-06,
+            "wrong": [["0.0025313299390408165",
+                       "That is relative to the heading's energy alone; the statement's h "
+                       "includes the translation, m C^2/2."]],
             "success": "RK4 damps the oscillator a little at every step: |R(i w dt)| < 1, "
                        "so the energy falls steadily, about in proportion to the time."},
         "dla_phase": {
             "what": "DLA's phase lag after 100 periods, in radians",
             "points": 2, "rtol": 1e-06,
+            "wrong": [["2.0186378047070193",
+                       "That is the leading term of the lag per step, summed; the question "
+                       "asks for the lag itself (measured, or from the exact argument of R)."]],
             "success": "The implicit midpoint rule turns by 2 arctan(w dt/2) a step "
                        "instead of w dt: a lag that grows linearly with time."},
         "keeps": {
@@ -85,26 +100,20 @@ T, steps = 200*math.pi, 3200
 dt = 2*math.pi/32
 h = 0.5*(1.0 + 0.5**2)
 sledge = wt.examples.sledge()
-rk4 = fs.integrate(fs.sledge_rhs(params, C=1.0), (0.0, T), [0.0, 0.5, 0.0, 0.0], steps,
-                   "rk4")[1]
-dla = sledge.simulate({"x": 0.0, "theta": 0.0, "y": 0.0}, {"x": 1.0, "theta": 0.5},
-                      (0.0, T), params, method="DLA", dt=dt)
-
-
-def energy(theta, thetadot):
-    return 0.5*(1.0 + thetadot**2 + theta**2)
-
-
-def lag(theta, thetadot):
-    """omega T minus the computed phase, unwrapped to the nearest turn of omega T."""
-    chi = math.atan2(theta, thetadot)
-    return T - (chi + 2*math.pi*round((T - chi)/(2*math.pi)))
 
 # %% [markdown]
 # ## 1. RK4's energy
 
 # %%
 ### BEGIN SOLUTION
+rk4 = fs.integrate(fs.sledge_rhs(params, C=1.0), (0.0, T), [0.0, 0.5, 0.0, 0.0], steps,
+                   "rk4")[1]
+
+
+def energy(theta, thetadot):
+    return 0.5*(1.0 + thetadot**2 + theta**2)
+
+
 rk4_energy = (h - energy(rk4[-1, 0], rk4[-1, 1]))/h
 ### END SOLUTION
 ### PLACEHOLDER: rk4_energy = None  # your answer here: a number
@@ -118,6 +127,16 @@ check("long-run-dla", rk4_energy, part="rk4_energy")
 
 # %%
 ### BEGIN SOLUTION
+dla = sledge.simulate({"x": 0.0, "theta": 0.0, "y": 0.0}, {"x": 1.0, "theta": 0.5},
+                      (0.0, T), params, method="DLA", dt=dt)
+
+
+def lag(theta, thetadot):
+    """omega T minus the computed phase, unwrapped to the nearest turn of omega T."""
+    chi = math.atan2(theta, thetadot)
+    return T - (chi + 2*math.pi*round((T - chi)/(2*math.pi)))
+
+
 dla_phase = lag(dla.q["theta"][-1], dla.qdot["theta"][-1])
 ### END SOLUTION
 ### PLACEHOLDER: dla_phase = None  # your answer here: radians

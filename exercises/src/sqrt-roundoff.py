@@ -9,6 +9,11 @@
 # (**catastrophic cancellation**), and a rewritten form does not.
 
 # %% [markdown] statement
+# **Assumptions:** the sledge of section 3: a runner whose contact point moves only
+# along it (the non-holonomic constraint $\dot y\cos\theta - \dot x\sin\theta = 0$), a
+# torsion spring $k^2$ on the heading $\theta$, no friction; the speed $C$ along the runner
+# is then constant. The arithmetic: IEEE double precision, rounding to nearest ($u = 2^{-53}$).
+#
 # **Model.** The sledge with $m = J = k = C = 1$ and amplitude $a = 0.6$, so
 # $h = \tfrac12 mC^2 + \tfrac12 k^2a^2$. Squared, (3.11) gives
 # $J\dot\theta^2 = R(\theta) = 2h - mC^2 - k^2\theta^2$, which vanishes at the turning
@@ -42,11 +47,17 @@ EXERCISE = {
         "digits": {
             "what": "floor(log10) of the condition number of the naive radicand",
             "points": 1,
+            "wrong": [["10", "Take the floor of log10(kappa), not the next integer up."]],
             "success": "About that many of the 16 digits of a double can be lost in the "
                        "subtraction."},
         "rel_error": {
             "what": "the relative error of the naive radicand at theta = a - 1e-9",
             "points": 2, "rtol": 1e-06,
+            "wrong": [["1.014634665229886e-7",
+                       "You measured against the radicand at a distance of exactly 1e-9 from "
+                       "0.6; the float theta = a - 1e-9 is not that far from the float a. "
+                       "The statement's reference is the exact radicand of the two "
+                       "floating-point numbers a and theta: Fraction(a), Fraction(theta)."]],
             "success": "Far above the 1e-16 of one rounding, as the condition number "
                        "warned."},
         "form": {
@@ -112,13 +123,18 @@ check("sqrt-roundoff", rel_error, part="rel_error")
 
 # %% [markdown] solution
 # The factored form, in the same floating point, against the exact value; and what
-# the error does to $\dot\theta = \sqrt{R/J}$ (a square root halves a relative error):
+# the error does to $\dot\theta = \sqrt{R/J}$: a square root halves a relative error,
+# which saves $\log_{10}2 \approx 0.3$ of a digit, so $\dot\theta$ loses about as many
+# digits as $R$:
 
 # %% solution
 R_factored = k*k*(a - theta)*(a + theta)
 print(f"factored: relative error {float(abs(Fraction(R_factored) - R)/R):.1e}")
 print(f"thetadot: naive {math.sqrt(R_naive/J):.12e}, factored "
       f"{math.sqrt(R_factored/J):.12e}")
+exact_thetadot = math.sqrt(float(R)/J)   # R/J rounded once: within 1e-16 of the exact root
+print(f"relative error of the naive thetadot: "
+      f"{abs(math.sqrt(R_naive/J) - exact_thetadot)/exact_thetadot:.2e}")
 
 # %% [markdown]
 # ## 3. Which form

@@ -46,6 +46,11 @@ EXERCISE = {
         "rate": {
             "what": "the fastest decay rate of the heading equation at v = 50",
             "points": 1, "rtol": 1e-08,
+            "wrong": [["49.9899979991996", "That is the rate at v = 100, the chapter's fast "
+                                           "sleigh; this exercise runs it at v = 50."],
+                      ["49.97999199359359", "The heading's inertia about the contact point "
+                                            "is J + m b^2, not J: see the characteristic "
+                                            "equation."]],
             "success": "The heading is overdamped: one mode dies at this rate, the other "
                        "relaxes a thousand times more slowly."},
         "steps": {
@@ -53,7 +58,11 @@ EXERCISE = {
                     "RK4's real stability interval",
             "points": 2,
             "wrong": [["2690", "rate * dt must not exceed beta: round the number of steps "
-                               "up, not down."]],
+                               "up, not down."],
+                      ["5385", "That is the count at v = 100, the chapter's fast sleigh; this "
+                               "exercise runs it at v = 50."],
+                      ["5384", "Check your rate first (part 1): this count belongs to another "
+                               "rate."]],
             "success": "Thousands of steps, whatever the accuracy asked for: that is "
                        "stiffness."},
         "method": {
@@ -119,7 +128,7 @@ check("stiff-sleigh", steps, part="steps")
 # %% [markdown] solution
 # The bound is sharp: RK4 on the heading equation with $N$ steps stays bounded, with
 # 2 % fewer steps it blows up, although the fast mode has died out within the first
-# time unit (the slow mode, rate about 0.01, is all that is left):
+# time unit (the slow mode, rate about 0.02, is all that is left):
 
 # %% solution
 def heading(t, u):

@@ -71,7 +71,7 @@ def test_stored_checks_say_what_they_should(ex_id):
     assert student.metadata["whittaker_teach"] == {"exercise": ex_id}
     assert "Handing in" in text and "Download" in text and ".ipynb" in text
     assert "python -m whittaker_teach grade" in text
-    assert "Assumptions" in text and "(1." in text or "(2." in text or "(3." in text
+    assert "Assumptions" in text and any(s in text for s in ("(1.", "(2.", "(3."))
     # no solution leaks into the student notebook
     student_code = "\n".join(c.source for c in code)
     assert "BEGIN SOLUTION" not in student_code and "PLACEHOLDER" not in student_code

@@ -18,7 +18,7 @@ order (no step-size control, no interpolation: the result at the end is the last
 :func:`stability_interval` is the length beta of the real interval [-beta, 0] on which
 the method's stability function R(z) has ``|R| <= 1``: a decaying mode of rate
 ``lam`` keeps a stable step below ``beta / lam``.  :func:`sledge_rhs` is the sledge in
-the form (3.12)-(3.15) solves in closed form.
+the form (3.12)-(3.14), which (3.15) solves in closed form.
 
 >>> import math
 >>> f = lambda t, u: -u                      # u' = -u, u(0) = 1: u(1) = 1/e
@@ -84,6 +84,9 @@ def integrate(f, t_span, y0, steps, method="rk4"):
                 if A[i][j]:
                     yi = yi + dt * A[i][j] * K[j]
             K.append(np.asarray(f(t[n] + c[i] * dt, yi), dtype=float))
+            if K[-1].shape != y.shape:
+                raise ModelError(f"f(t, y) returned shape {K[-1].shape}; it must return one "
+                                 f"number per component of y0, shape {y.shape}")
         for i in range(s):
             if b[i]:
                 y = y + dt * b[i] * K[i]
@@ -101,6 +104,12 @@ def observed_order(e_coarse, e_fine, ratio=2.0):
     if not (e_coarse > 0 and e_fine > 0):
         raise ModelError("observed_order needs two positive errors (an error of 0 says "
                          "the method is exact here, or round-off has taken over)")
+    if not (math.isfinite(e_coarse) and math.isfinite(e_fine)):
+        raise ModelError("observed_order needs two finite errors (an infinite one says the "
+                         "run blew up: the step is outside the stability interval)")
+    if not (math.isfinite(ratio) and ratio > 0 and ratio != 1):
+        raise ModelError(f"ratio = {ratio!r} must be a finite positive number other than 1 "
+                         "(the ratio of the two steps)")
     return math.log(e_coarse / e_fine) / math.log(ratio)
 
 
@@ -114,14 +123,15 @@ def stability_function(method, z):
 
 
 def stability_interval(method):
-    """beta: |R(-x)| <= 1 for 0 <= x <= beta (bisection to 1e-13 on the first x > 0 where
-    |R| exceeds 1)."""
+    """beta: |R(-x)| <= 1 for 0 <= x <= beta: the first x > 0 where |R| exceeds 1, found by
+    a scan in steps of 0.01 (an unstable window narrower than that could be missed; the
+    methods here have none) and bisection to 1e-13."""
     def unstable(x):
         return abs(stability_function(method, -x)) > 1 + 1e-14
-    hi = 0.5
-    while not unstable(hi):
-        hi += 0.5
-    lo = hi - 0.5
+    k = 1
+    while not unstable(0.01 * k):
+        k += 1
+    lo, hi = 0.01 * (k - 1), 0.01 * k
     while hi - lo > 1e-13:
         mid = 0.5 * (lo + hi)
         lo, hi = (lo, mid) if unstable(mid) else (mid, hi)
@@ -133,8 +143,13 @@ def sledge_rhs(params, C):
     theta'' = -(k^2/J) theta (3.14), xdot = C cos theta (3.12), ydot = C sin theta (3.13),
     C the constant speed along the runner.  The closed form of the same motion is
     ``examples.sledge_exact``."""
-    w2 = float(params["k"]) ** 2 / float(params["J"])
-    C = float(C)
+    missing = [p for p in ("J", "k") if p not in params]
+    if missing:
+        raise ModelError(f"params lacks {', '.join(missing)}: the sledge needs J and k")
+    J, k, C = float(params["J"]), float(params["k"]), float(C)
+    if not (math.isfinite(J) and J > 0 and math.isfinite(k) and math.isfinite(C)):
+        raise ModelError(f"J = {J}, k = {k}, C = {C}: J must be positive, all three finite")
+    w2 = k ** 2 / J
 
     def f(t, u):
         th, thd = u[0], u[1]

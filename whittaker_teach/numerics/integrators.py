@@ -15,9 +15,12 @@ denominators, so regular where (1.3) has a pole), by A at the midpoint:
 these n + g equations for (q_{k+1}, lambda_k) by Newton's method, with the
 Jacobian generated symbolically.  For a holonomic system it is the midpoint
 variational integrator, which is symplectic.  It is second order; what it
-buys is the long-time behaviour: on the sledge the energy error stays bounded
-(it oscillates, O(dt^2)) instead of drifting, because the discrete motion
-inherits the reversibility of the continuous one.
+buys is the long-time behaviour: on the sledge it keeps the energy to rounding
+(the heading is a linear oscillator, on which it is the implicit midpoint rule);
+on other non-holonomic systems its energy error stays bounded in practice,
+O(dt^2), instead of drifting (the offset sleigh, chapter 8), with no general
+theorem behind it: the discrete motion inherits the reversibility of the
+continuous one.
 
 >>> import whittaker_teach as wt
 >>> ex = wt.examples.sledge_exact({"m": 1, "J": 1, "k": 1}, a=0.5, C=1.0)
