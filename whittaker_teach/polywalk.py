@@ -247,11 +247,58 @@ def fraction(expr, limit=None):
     p, q = (p * cq).set_ring(Z), (q * cp).set_ring(Z)
     if limit is not None and len(p) * len(q) > limit:
         raise TooLarge(expr)
-    _, p, q = p.cofactors(q)            # the gcd, and both sides divided by it
+    _, p, q = _cofactors(p, q)          # the gcd, and both sides divided by it
     if any(m[walk.index[r]] for r in roots for m in q.itermonoms()):
         raise NotPolynomial(expr)   # a root left below: ``together`` may cancel it, with
                                    # a relation (r**2 = b) that the gcd does not see
     return _signed(p, q, walk.order)
+
+
+def _gcd_ring(k):
+    """A ``PolyRing`` over the integers in ``k`` placeholders named so that dropping its
+    first generator gives ``_gcd_ring(k - 1)``: SymPy's heuristic gcd drops one generator
+    per level, building each smaller ring (with ``exec``, about a millisecond) the first
+    time it meets it, and with these names every gcd shares one chain of rings."""
+    from sympy.polys.domains import ZZ
+    from sympy.polys.rings import PolyRing
+    R = _RINGS.get((k, "gcd"))
+    if R is None:
+        larger = [n for n, kind in _RINGS if kind == "gcd" and n > k]
+        if larger:                  # dropped to, as the gcd drops (SymPy keeps those)
+            R = _RINGS[min(larger), "gcd"]
+            while R.ngens > k:
+                R = R.drop(R.gens[0])
+        else:
+            R = PolyRing([sp.Symbol(f"_g{i}") for i in range(k - 1, -1, -1)], ZZ)
+        _RINGS[k, "gcd"] = R
+    return R
+
+
+def _cofactors(p, q):
+    """``p.cofactors(q)`` (the gcd and both quotients), computed in a ring of only the
+    generators that occur in p or q (:func:`_gcd_ring`), in their order: a ring padded
+    with unused generators (``RING_STEP``) costs the heuristic gcd one level, and the
+    first time one new ring, per unused generator.  The same polynomials: the order of
+    the generators that occur is kept, so the leading coefficients and signs are too."""
+    R = p.ring
+    used = sorted({i for f in (p, q) for m in f.itermonoms() for i, e in enumerate(m) if e})
+    if len(used) == R.ngens or not used:
+        return p.cofactors(q)
+    Rk = _gcd_ring(len(used))
+
+    def down(f):
+        return Rk.from_dict({tuple(m[i] for i in used): c for m, c in f.items()})
+
+    def up(f):
+        out = {}
+        for m, c in f.items():
+            full = [0] * R.ngens
+            for j, i in enumerate(used):
+                full[i] = m[j]
+            out[tuple(full)] = c
+        return R.from_dict(out)
+
+    return tuple(up(f) for f in down(p).cofactors(down(q)))
 
 
 def fractions(exprs):

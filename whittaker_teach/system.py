@@ -51,6 +51,7 @@ from .dag import diff, substitute, zeroed
 from .errors import ModelError, guarded
 from .inputs import check_coordinates, check_values, readable, require_expr, subexpressions
 from .linear import lu_solve, solve_with_regular_poles
+from .mechanics_input import constraint_expressions, dependent_velocities, exact_rationals
 from .reduction import Reduction
 from .rewrite import collected, rational
 from .steps import Derivation, Report, Step, eq
@@ -124,7 +125,6 @@ class ChaplyginSystem:
     @guarded("building the system")
     def __init__(self, lagrangian, coordinates, dependent=None, *, nonhol_coneqs=None,
                  name=None):
-        from .mechanics_input import constraint_expressions, dependent_velocities
         self.name = name or "system"
         self.coordinates = check_coordinates(coordinates)
         self._t = self.coordinates[0].args[0]       # dynamicsymbols._t, or t real=True
@@ -195,7 +195,6 @@ class ChaplyginSystem:
 
     def _exact(self, expr):
         """``expr`` with its Floats as the exact rationals they print as (recorded)."""
-        from .mechanics_input import exact_rationals
         return exact_rationals(expr, self.rationalized) if isinstance(expr, sp.Basic) else expr
 
     # ----- notation -------------------------------------------------------
