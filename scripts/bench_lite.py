@@ -103,7 +103,11 @@ def browser_figures(site: Path):
             t1 = time.monotonic()
             page.keyboard.press("Control+Enter")
             out = cell.locator(".jp-OutputArea")
-            out.get_by_text("BENCH").wait_for(timeout=300_000)
+            try:
+                out.get_by_text("BENCH").wait_for(timeout=300_000)
+            except Exception:
+                sys.exit("bench_lite: the cell printed no BENCH line; its output:\n"
+                         + out.inner_text()[:2000])
             out.locator(".jp-RenderedLatex mjx-container").last.wait_for(timeout=120_000)
             status.filter(has_text="Idle").wait_for(timeout=120_000)
             fig["browser_wall_s"] = time.monotonic() - t1
