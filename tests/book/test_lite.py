@@ -311,6 +311,24 @@ def test_chapter_4_runs_in_the_browser(lite):
     assert lite.outside == [], lite.outside
 
 
+@pytest.mark.browser
+@pytest.mark.slow
+def test_chapter_11_every_form_runs_in_the_browser(lite):
+    """The forms room (whittaker_teach.forms) in Pyodide: every cell of chapter 11 runs
+    without an error, and the three systems' forms are shown equal there too."""
+    lab = lite.launch("book/11-every-form.html")
+    assert "path=book/11-every-form.ipynb" in lab.url
+    wait_notebook(lab)
+    wait_kernel_idle(lab)
+    run_all(lab, timeout_s=1800)
+    errors = _errors(lab)
+    assert errors.count() == 0, errors.all_inner_texts()[:3]
+    for start in ("report(agree(disk))", "report(agree(weight))"):
+        cell, _ = _code_cell(lab, start)
+        assert "all agree" in cell.locator(".jp-OutputArea").inner_text(), start
+    assert lite.outside == [], lite.outside
+
+
 def _answer(lab, source_start, new_source):
     """Replace a cell's code, run it and the next cell (the check); the check's output."""
     cell, _ = _code_cell(lab, source_start)
