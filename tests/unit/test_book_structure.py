@@ -101,6 +101,21 @@ def test_every_figure_has_alt_text_and_a_caption():
         assert (BOOK / src).is_file(), f"{page}: {src} does not exist"
 
 
+def test_every_plot_drawn_by_a_cell_has_alt_text():
+    """A code cell whose stored output is an image carries its alt text in the cell's
+    metadata (``mystnb: image: alt:``), so the page's <img> has one: found at the source,
+    before the browser test of the built page."""
+    missing = []
+    for nb_path in sorted(BOOK.glob("*.ipynb")):
+        for i, cell in enumerate(json.loads(nb_path.read_text(encoding="utf-8"))["cells"]):
+            images = [o for o in cell.get("outputs", [])
+                      if {"image/svg+xml", "image/png"} & set(o.get("data", {}))]
+            alt = cell.get("metadata", {}).get("mystnb", {}).get("image", {}).get("alt", "")
+            if images and len(alt.split()) < 5:
+                missing.append(f"{nb_path.name} cell {i}")
+    assert not missing, missing
+
+
 SCRIPTS = sorted((BOOK / "figures" / "systems").glob("[!_]*.py"))   # _draw.py is shared
 
 

@@ -24,7 +24,7 @@ import matplotlib
 matplotlib.use("svg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-__all__ = ["style", "arrow", "plane", "coordinates", "save"]
+__all__ = ["style", "arrow", "plane", "coordinates", "save", "panels"]
 
 
 def style(name, size=22):
@@ -72,3 +72,16 @@ def save(fig, script_file):
     fig.savefig(out, metadata={"Date": None}, bbox_inches="tight")
     plt.close(fig)
     return out
+
+
+def panels(script_file, drawers, figsize, ratios):
+    """One figure of side-by-side views, each drawn by one function of ``drawers`` on an
+    equal-aspect axes without frame, written by :func:`save`; the path."""
+    fig, axes = plt.subplots(1, len(drawers), figsize=figsize,
+                             gridspec_kw={"width_ratios": list(ratios)})
+    for ax, draw in zip(axes, drawers):
+        ax.set_aspect("equal")
+        ax.axis("off")
+        draw(ax)
+    return save(fig, script_file)
+

@@ -118,14 +118,8 @@ def top(ax):
 
 
 def main():
-    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.6),
-                               gridspec_kw={"width_ratios": [1.35, 1]})
-    for ax in (a, b):
-        ax.set_aspect("equal")
-        ax.axis("off")
-    side(a)
-    top(b)
-    return _draw.save(fig, __file__)
+    return _draw.panels(__file__, (side, top), figsize=(11, 4.6),
+                        ratios=(1.35, 1))
 
 
 if __name__ == "__main__":

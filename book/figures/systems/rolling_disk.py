@@ -15,7 +15,6 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
 import _draw  # noqa: E402
-import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 _draw.style("rolling_disk")
@@ -76,14 +75,8 @@ def side(ax):
 
 
 def main():
-    fig, (a, b) = plt.subplots(1, 2, figsize=(9.6, 4.6),
-                               gridspec_kw={"width_ratios": [1.1, 1]})
-    for ax in (a, b):
-        ax.set_aspect("equal")
-        ax.axis("off")
-    top(a)
-    side(b)
-    return _draw.save(fig, __file__)
+    return _draw.panels(__file__, (top, side), figsize=(9.6, 4.6),
+                        ratios=(1.1, 1))
 
 
 if __name__ == "__main__":
