@@ -329,6 +329,37 @@ def test_chapter_11_every_form_runs_in_the_browser(lite):
     assert lite.outside == [], lite.outside
 
 
+@pytest.mark.browser
+@pytest.mark.slow
+def test_geometry_and_rolling_rooms_run_in_the_browser(lite):
+    """Chapters 13 and 14 keep their stored outputs in the browser (their figures need
+    matplotlib), but their symbolic parts run there: the sledge's non-holonomic bracket
+    and its Jacobiator (chapter 13), and the Chaplygin ball taken in through the
+    mechanics input with x and y dependent (chapter 14), in Pyodide."""
+    lab = lite.launch("book/your-own-system.html")
+    wait_notebook(lab)
+    wait_kernel_idle(lab)
+    cell = _notebook(lab).locator(".jp-CodeCell").first
+    cell.locator(".cm-content").click()
+    lab.keyboard.press("Control+A")
+    lab.keyboard.press("Delete")
+    lab.keyboard.insert_text(
+        "import whittaker_teach as wt\n"
+        "from whittaker_teach import geometry as geo, rolling\n"
+        "nb = geo.nonholonomic_bracket(wt.examples.sledge())\n"
+        "print('JAC', nb.structure.jacobiator(*nb.symbols('x', 'p_x', 'p_theta')))\n"
+        "ball = rolling.chaplygin_ball()\n"
+        "print('BALL', ball.name, ball.dependent_coordinates)\n")
+    lab.keyboard.press("Control+Enter")
+    out = cell.locator(".jp-OutputArea")
+    out.get_by_text("BALL").wait_for(timeout=RUN_ALL_S * 1000)
+    text = out.inner_text()
+    assert "JAC tan(theta)" in text, text
+    assert "BALL chaplygin_ball [x(t), y(t)]" in text, text
+    assert _errors(lab).count() == 0, _errors(lab).all_inner_texts()[:3]
+    assert lite.outside == [], lite.outside
+
+
 def _answer(lab, source_start, new_source):
     """Replace a cell's code, run it and the next cell (the check); the check's output."""
     cell, _ = _code_cell(lab, source_start)
