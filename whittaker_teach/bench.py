@@ -162,6 +162,21 @@ def family(n, holonomic=False):
     return T - V, q + ys, dep
 
 
+def _frame(q, kane):
+    """What every vehicle family starts from: the generalized speeds u_q of the
+    coordinates, ``speed`` (a velocity written in them for Kane, as it is otherwise), the
+    inertial frame N and its fixed point O."""
+    import sympy.physics.mechanics as me
+    from sympy.physics.mechanics import dynamicsymbols
+    t = dynamicsymbols._t
+    u = {c_.diff(t): dynamicsymbols(f"u_{c_.func.__name__}") for c_ in q}
+    speed = (lambda e: e.xreplace(u)) if kane else (lambda e: e)
+    N = me.ReferenceFrame("N")
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    return u, speed, N, O
+
+
 def chain(n, kane=False):
     """The chain of spring-coupled Chaplygin sleighs with n coordinates: s = n // 3 sleighs
     (x_i, theta_i, y_i: mass m, moment of inertia J about the contact point P_i, which
@@ -191,11 +206,7 @@ def chain(n, kane=False):
     ys = [dynamicsymbols(f"y{i}") for i in range(1, s + 1)]
     zs = [dynamicsymbols(f"z{j}") for j in range(1, r + 1)]
     q = [c_ for i in range(s) for c_ in (xs[i], ths[i], ys[i])] + zs
-    u = {c_.diff(t): dynamicsymbols(f"u_{c_.func.__name__}") for c_ in q}
-    speed = (lambda e: e.xreplace(u)) if kane else (lambda e: e)
-    N = me.ReferenceFrame("N")
-    O = me.Point("O")
-    O.set_vel(N, 0)
+    u, speed, N, O = _frame(q, kane)
     V = sp.S.Zero
     bodies, coneqs, parts = [], [], []
     for i in range(s):
@@ -259,11 +270,7 @@ def rotor_train(n, kane=False):
                          for v in ("x", "y", "theta", "psi"))
     zs = [dynamicsymbols(f"z{j}") for j in range(1, r + 1)]
     q = [c_ for i in range(s) for c_ in (xs[i], ys[i], ths[i], psis[i])] + zs
-    u = {c_.diff(t): dynamicsymbols(f"u_{c_.func.__name__}") for c_ in q}
-    speed = (lambda e: e.xreplace(u)) if kane else (lambda e: e)
-    N = me.ReferenceFrame("N")
-    O = me.Point("O")
-    O.set_vel(N, 0)
+    u, speed, N, O = _frame(q, kane)
     V = sp.S.Zero
     bodies, coneqs, loads = [], [], []
     for i in range(s):
@@ -316,11 +323,7 @@ def coin_train(n, kane=False):
                          for v in ("x", "y", "theta", "phi"))
     zs = [dynamicsymbols(f"z{j}") for j in range(1, r + 1)]
     q = [c_ for i in range(s) for c_ in (xs[i], ys[i], ths[i], phis[i])] + zs
-    u = {c_.diff(t): dynamicsymbols(f"u_{c_.func.__name__}") for c_ in q}
-    speed = (lambda e_: e_.xreplace(u)) if kane else (lambda e_: e_)
-    N = me.ReferenceFrame("N")
-    O = me.Point("O")
-    O.set_vel(N, 0)
+    u, speed, N, O = _frame(q, kane)
     V, V_gravity = sp.S.Zero, sp.S.Zero
     bodies, coneqs, loads, forces = [], [], [], []
     for i in range(s):

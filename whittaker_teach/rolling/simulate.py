@@ -49,6 +49,15 @@ def tilt_rotation(angle, axis):
     return np.eye(3) + np.sin(angle) * K + (1 - np.cos(angle)) * K @ K
 
 
+def _run(rhs, s0, t_end, n, rtol, atol, what):
+    """DOP853 from 0 to ``t_end``, the state at n equally spaced times; a failure named."""
+    t = np.linspace(0.0, t_end, n)
+    sol = solve_ivp(rhs, (0.0, t_end), s0, method="DOP853", rtol=rtol, atol=atol, t_eval=t)
+    if not sol.success:
+        raise RuntimeError(f"{what} failed: {sol.message}")
+    return sol
+
+
 def _rattleback_functions(values):
     from .rattleback_model import RattlebackVectors
     rv = RattlebackVectors()
@@ -84,10 +93,7 @@ def simulate_rattleback(values, omega0, tilt=(0.0, 0.0), t_end=20.0, n=2001,
         return np.concatenate([wdot, Qdot.ravel(), vG[:2]])
 
     s0 = np.concatenate([np.asarray(omega0, float), Q0.ravel(), [0.0, 0.0]])
-    t = np.linspace(0.0, t_end, n)
-    sol = solve_ivp(rhs, (0.0, t_end), s0, method="DOP853", rtol=rtol, atol=atol, t_eval=t)
-    if not sol.success:
-        raise RuntimeError(f"the rattleback's integration failed: {sol.message}")
+    sol = _run(rhs, s0, t_end, n, rtol, atol, "the rattleback's integration")
     w = sol.y[:3].T
     Q = sol.y[3:12].T.reshape(-1, 3, 3)
     gm = Q[:, 2, :]
@@ -138,10 +144,7 @@ def simulate_ball(values, omega0, Q0=None, t_end=20.0, n=2001, rtol=1e-11, atol=
         return np.concatenate([np.cross(M, w), (Q @ _hat(w)).ravel(), vG[:2]])
 
     s0 = np.concatenate([M0, Q0.ravel(), [0.0, 0.0]])
-    t = np.linspace(0.0, t_end, n)
-    sol = solve_ivp(rhs, (0.0, t_end), s0, method="DOP853", rtol=rtol, atol=atol, t_eval=t)
-    if not sol.success:
-        raise RuntimeError(f"the ball's integration failed: {sol.message}")
+    sol = _run(rhs, s0, t_end, n, rtol, atol, "the ball's integration")
     M = sol.y[:3].T
     Q = sol.y[3:12].T.reshape(-1, 3, 3)
     gm = Q[:, 2, :]
