@@ -9,7 +9,7 @@ reduced Lagrangian L* (1.16) differs for xdot > 0 and xdot < 0.
 """
 
 import sympy as sp
-from sympy.physics.mechanics import dynamicsymbols
+from ..coordinates import dynamicsymbols
 
 from ..system import ChaplyginSystem
 

@@ -9,7 +9,7 @@ the reduced constraint qdot* (1.23) changes sign with the direction of travel.
 """
 
 import sympy as sp
-from sympy.physics.mechanics import dynamicsymbols
+from ..coordinates import dynamicsymbols
 
 from ..system import ChaplyginSystem
 

@@ -8,7 +8,7 @@ theta
 """
 
 import sympy as sp
-from sympy.physics.mechanics import dynamicsymbols
+from ..coordinates import dynamicsymbols
 
 from ..system import ChaplyginSystem
 

@@ -10,7 +10,7 @@ J*Derivative(theta(t), t)**2/2 - k**2*theta(t)**2/2 + m*(Derivative(x(t), t)**2 
 """
 
 import sympy as sp
-from sympy.physics.mechanics import dynamicsymbols
+from ..coordinates import dynamicsymbols
 
 from ..system import ChaplyginSystem
 

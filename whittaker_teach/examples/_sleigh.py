@@ -9,7 +9,7 @@ ahead of it along the runner.  With b = 0 it is the sledge of section 3.
 """
 
 import sympy as sp
-from sympy.physics.mechanics import dynamicsymbols
+from ..coordinates import dynamicsymbols
 
 from ..system import ChaplyginSystem
 
