@@ -40,13 +40,32 @@ def test_run_set_and_picks_do_not_depend_on_speed(tiny):
 
 
 def test_budget_in_evaluations(monkeypatch):
+    """Over the budget, a ladder that has reached the tightest target stops; one that
+    has not goes on (review C, item 4: a cut ladder made a looser run stand in), up
+    to the cap, and the summary then says so."""
     monkeypatch.setattr(wp, "NFEV_BUDGET", 250)
+    monkeypatch.setattr(wp, "TARGETS", (1e-3,))
     res = wp.study(quick=True, progress=False, amplitudes=(0.3,), methods=("DOP853",),
                    rtols=(1e-3, 1e-6, 1e-9), dla_steps=(), periods=1, repeat=1,
                    alternatives=False)
     full = [r for r in res["runs"] if r["model"] == "full"]
     assert full[-1]["nfev"] > 250 and all(r["nfev"] <= 250 for r in full[:-1])
-    assert len(full) < 3
+    assert full[-1]["error"] <= 1e-3 and len(full) < 3
+    monkeypatch.setattr(wp, "TARGETS", (1e-14,))      # out of reach: the ladder goes on
+    res = wp.study(quick=True, progress=False, amplitudes=(0.3,), methods=("DOP853",),
+                   rtols=(1e-3, 1e-6, 1e-9), dla_steps=(), periods=1, repeat=1,
+                   alternatives=False)
+    full = [r for r in res["runs"] if r["model"] == "full"]
+    assert len(full) == 3 and full[1]["nfev"] > 250
+    assert "not reached" in wp.summary(res) and "within budget" not in wp.summary(res)
+    cap = full[1]["nfev"]                               # ... until the cap, then says so
+    monkeypatch.setattr(wp, "NFEV_CAP", cap - 1)
+    res = wp.study(quick=True, progress=False, amplitudes=(0.3,), methods=("DOP853",),
+                   rtols=(1e-3, 1e-6, 1e-9), dla_steps=(), periods=1, repeat=1,
+                   alternatives=False)
+    full = [r for r in res["runs"] if r["model"] == "full"]
+    assert len(full) == 2 and full[-1]["nfev"] == cap
+    assert "not reached within budget" in wp.summary(res)
 
 
 def test_summary_and_table(tiny):
@@ -112,3 +131,31 @@ def test_failed_run_is_recorded_not_raised():
            "exact_cost": {}}
     assert "failed: ChartError" in wp.table(res)
     assert wp.cheapest(res)[1.5][1e-6]["reduced"] is None
+
+
+def test_stored_study_ladders_not_cut_short():
+    """The book's stored study follows the ladder rule: a ladder ends over its budget
+    only once it has reached the tightest target, or at the cap (review C, item 4:
+    the stored reduced DOP853 ladder at a = 1.5 once ended at 31 106 evaluations and
+    6.7e-12, and a DOP853-tight run stood in for it)."""
+    import json
+    from pathlib import Path
+    res = json.loads((Path(__file__).resolve().parents[2] / "book" / "figures" / "numerics"
+                      / "work_precision.json").read_text())
+    meta, tight = res["meta"], min(wp.TARGETS)
+    ladders = {}
+    for r in res["runs"]:
+        if "failed" not in r and r["method"] not in (wp.TIGHT, "DLA") and r["model"] != "exact":
+            ladders.setdefault((r["amplitude"], r["model"], r["method"]), []).append(r)
+    assert len(ladders) > 10
+    for key, runs in ladders.items():
+        for r in runs[:-1]:                  # no ladder went on past a legitimate end
+            assert not (r["nfev"] > meta["nfev_cap"]
+                        or (r["nfev"] > meta["nfev_budget"] and r["error"] <= tight)), key
+        last = runs[-1]
+        ended_early = last["setting"] != meta["rtols"][-1]
+        if ended_early:
+            assert last["nfev"] > meta["nfev_cap"] or (
+                last["nfev"] > meta["nfev_budget"] and last["error"] <= tight), key
+    reduced = wp.cheapest(res)[1.5][1e-12]["reduced"]
+    assert reduced["method"] == "DOP853" and reduced["nfev"] < meta["nfev_cap"]
