@@ -169,12 +169,14 @@ HAND_IN = """## Handing in
 Your lecturer grades the whole class with
 
 ```
-python -m whittaker_teach grade submissions/*.ipynb --out grades.csv --feedback feedback/
+python -m whittaker_teach grade --exercise {ex_id} --roster roster.csv submissions/ --out grades.csv --feedback feedback/
 ```
 
 which checks every answer you passed to `check(...)` again (the last check of each
 part counts; a part you never checked is "not answered") and writes one row per part
-and a feedback page for you."""
+and a feedback page for you. You are recognised by the file name your course's
+system gives your upload, checked against the class list; a notebook of another
+exercise is refused for this one."""
 
 
 def _nb(cells: list[tuple[str, str, list]], ex_id: str):
@@ -249,7 +251,7 @@ def build(ex_id: str, text: str):
             flush()
             solution.append(("code", src, tags))
     flush()
-    student.append(("markdown", HAND_IN, []))
+    student.append(("markdown", HAND_IN.format(ex_id=ex_id), []))
     if statements != 1:
         raise SourceError(f"{ex_id}: exactly one '# %% [markdown] statement' cell is needed, "
                           f"found {statements}")

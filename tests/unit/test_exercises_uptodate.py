@@ -113,7 +113,7 @@ def test_placeholders_replace_solutions():
     student, solution = make_exercises.build("demo", src)
     assert [c.source for c in student.cells] == [
         "Do it.", "import math\na = None  # your answer here\na", "check('demo', a)",
-        make_exercises.HAND_IN]
+        make_exercises.HAND_IN.format(ex_id="demo")]
     assert student.metadata["whittaker_teach"] == {"exercise": "demo"}
     sources = [c.source for c in solution.cells]
     assert sources[0].startswith(":::{exercise}\n:label: ex-demo")
