@@ -55,6 +55,9 @@ EXERCISE = {
             "what": "L* (3.7) = dOmega/d xdot with xdot from (3.5)", "points": 2,
             "sign_note": "the direction of travel is xdot > 0, so take the root with the + sign",
             "why_not": {"xdot": "put xdot from (3.5)", "thetadot": "use theta'"},
+            "wrong": [["h - k^2*theta^2",
+                       "this is Omega itself at xdot from (3.5); L* (1.16) is its derivative "
+                       "dOmega/dxdot, taken first and then evaluated at that xdot"]],
             "success": "L* = sqrt(2h - k^2 theta^2) sqrt(m (1 + tan^2 theta) + J theta'^2) "
                        "(3.7), the + sign for xdot > 0."},
     },

@@ -115,14 +115,21 @@ CASES = {
          "LIB:sledge:x:velocity"],
         [("sqrt(2*h - k^2*theta^2)/sqrt(1 + tan(theta)^2 + J*theta'^2)", "factor m is missing"),
          ("-sqrt(2*h - k^2*theta^2)/sqrt(m*(1 + tan(theta)^2) + J*theta'^2)", "sign"),
-         ("sqrt(2*h - k^2*theta^2)/(m*(1 + tan(theta)^2) + J*theta'^2)", "power")]),
+         ("sqrt(2*h - k^2*theta^2)/(m*(1 + tan(theta)^2) + J*theta'^2)", "power"),
+         # review C, item 10: the slip J theta' in one root is named, not "check the signs"
+         ("sqrt((2*h - k^2*theta^2)/(m*sec(theta)^2 + J*theta'))", "factor thetaprime is missing"),
+         ("sqrt(2*h - k^2*theta^2)/sqrt(m*sec(theta)^2 + J*theta')", "factor thetaprime is missing")]),
     ("sledge-L-star", "L_star"): (
         ["sqrt(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + J*theta'^2)",
          "sqrt((2*h - k**2*theta**2)*(m + m*tan(theta)**2 + J*thetaprime**2))",
          "LIB:sledge:x:L_star"],
         [("sqrt(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + theta'^2)", "factor J is missing"),
          ("-sqrt(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + J*theta'^2)", "sign"),
-         ("(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + J*theta'^2)", "power")]),
+         ("(2*h - k^2*theta^2)*sqrt(m*sec(theta)^2 + J*theta'^2)", "power"),
+         # review C, gap 9: Omega itself at xdot, the lecturer's own hint, as a sentence
+         ("h - k^2*theta^2", "This is Omega itself at xdot from (3.5); L* (1.16) is its "
+                             "derivative dOmega/dxdot, taken first and then evaluated at that "
+                             "xdot.")]),
     ("sledge-reduced-equation", "theta_pp"): (
         ["(J*theta'^2*((2*h - k^2*theta^2)*tan(theta) - k^2*theta)"
          " - m*k^2*theta*(1 + tan(theta)^2))"

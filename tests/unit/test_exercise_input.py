@@ -93,7 +93,7 @@ def test_a_lecturer_s_wrong_value_for_a_number_is_used():
     mine = Part(name=part.name, what=part.what, expected=part.expected, rtol=part.rtol,
                 wrong=[(sp.Integer(1157), "that counts the dense output's evaluations too")])
     f = check_part(ex, mine, "1157")
-    assert not f.ok and f.message == "that counts the dense output's evaluations too"
+    assert not f.ok and f.message == "That counts the dense output's evaluations too."
 
 
 def test_a_square_root_slip_is_named_before_complex_values():

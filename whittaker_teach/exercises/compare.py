@@ -1023,15 +1023,27 @@ def _where(k):
 
 
 def _factors(expr):
-    """[(base, exponent)] of the factors of expr whose base is a sum (not expr itself)."""
+    """[(base, exponent)] of the factors of expr whose base is a sum (not expr itself).
+
+    A root of a quotient counts as the roots of its parts (review C, item 10: a slip
+    inside ``sqrt(N/D)`` is named as one inside ``sqrt(N)/sqrt(D)`` is); which factor
+    differs is then decided numerically, so splitting the root assumes nothing.
+
+    >>> x, y = sp.symbols("x y")
+    >>> sorted(_factors(sp.sqrt((x + 1)/(y + 2))), key=str)
+    [(x + 1, 1/2), (y + 2, -1/2)]
+    """
     out = []
-    factors = sp.Mul.make_args(expr)
-    for f in factors:
-        b, k = f.as_base_exp()
-        if k == 1 and len(factors) == 1:
-            continue
-        if isinstance(b, sp.Add) and b.free_symbols and k.is_Rational and (b, k) not in out:
-            out.append((b, k))
+    for form in (expr, sp.expand_power_base(expr, force=True)):
+        factors = sp.Mul.make_args(form)
+        for f in factors:
+            b, k = f.as_base_exp()
+            while isinstance(b, sp.Pow) and b.exp.is_Rational and k.is_Rational:
+                b, k = b.base, k * b.exp
+            if k == 1 and len(factors) == 1:
+                continue
+            if isinstance(b, sp.Add) and b.free_symbols and k.is_Rational and (b, k) not in out:
+                out.append((b, k))
     return out
 
 
@@ -1057,7 +1069,9 @@ def _inner_hint(answer, expected, fa, fe, syms, pts, domain):
                     if None in (a, e, u, w) or abs(w) <= TOL or abs(e) <= TOL:
                         ok = False
                         break
-                    if not _close(a / e, _pow(u / w, mpmath.mpf(ke.p) / ke.q)):
+                    # compared to the power q (k = p/q): a root's branch (sqrt(N/D)
+                    # against sqrt(N)/sqrt(D) where D < 0) changes only a q-th root of 1
+                    if not _close((a / e) ** ke.q, _pow(u / w, mpmath.mpf(ke.p))):
                         ok = False
                         break
                 if not ok:

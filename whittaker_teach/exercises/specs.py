@@ -182,6 +182,12 @@ def _sentence(text):
     return text[:1].upper() + text[1:]
 
 
+def _lecturer_hint(text):
+    """A lecturer's ``wrong`` message as a sentence (capital, final stop)."""
+    text = _sentence(text.strip())
+    return text if text.endswith((".", "!", "?")) else text + "."
+
+
 def _norm_choice(text):
     return "".join(c for c in text.lower() if c.isalnum())
 
@@ -332,7 +338,7 @@ def _judge_expression(ex, part, answer, names, domain, max_length, read, graded=
         return Feedback(True, part.success or f"{part.what} is right.", ex.id, part.name)
     for wrong, message in part.wrong:
         if equal(expr, wrong, domain, seed, fresh=False):
-            return Feedback(False, message, ex.id, part.name)
+            return Feedback(False, _lecturer_hint(message), ex.id, part.name)
     other = _other_part(ex, part, expr, domain, seed,
                         terms=verdict.hint.startswith("your answer is not equal"))
     if other:
@@ -391,7 +397,7 @@ def _check_number(ex, part, expr, graded=False):
     for wrong, message in part.wrong:
         value = _Fn(wrong, [])({})
         if value is not None and _within(got, complex(value), rtol):
-            return Feedback(False, message, ex.id, part.name)
+            return Feedback(False, _lecturer_hint(message), ex.id, part.name)
     if abs(got.imag) > 1e-12 * max(1.0, abs(got)):
         return Feedback(False, "Your answer is a complex number; the right one is real.",
                         ex.id, part.name)

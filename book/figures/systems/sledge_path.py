@@ -14,7 +14,7 @@ The reaction is R = m C thetadot n, n = (-sin theta, cos theta) (chapter 3: the
 multiplier is lambda = -m C thetadot cos theta): it vanishes where theta = +-a
 (thetadot = 0) and is largest, m C a omega, where theta = 0. So the instant drawn,
 T_DRAWN = 7 pi / 4, is one where the heading is still large (theta = a cos 7pi/4)
-and turning towards 0 (thetadot > 0), and R is drawn to scale against its largest
+and still growing towards a (theta > 0, thetadot > 0), and R is drawn to scale against its largest
 value (R_FULL at theta = 0).
 
 Run ``python book/figures/systems/sledge_path.py``: it writes
