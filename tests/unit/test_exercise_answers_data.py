@@ -104,3 +104,23 @@ def test_withheld_data_reads_answers_back_without_a_verdict(tmp_path, monkeypatc
         assert f.message.startswith("Read as ") and "sqrt(m)" in f.message and "graded" in f.message
     assert check("kepler-orbit", None, part="h").status == "unanswered"
     assert check("kepler-orbit", "2 3", part="h").status == "invalid"
+
+
+def test_a_wrong_entry_equal_to_the_answer_is_refused():
+    """Review C, gap 7: a ``wrong`` entry that equals the right answer on the domain
+    would tell a student with the right answer that it is wrong; the build refuses it
+    (for an expression and for a number), and accepts a really wrong one."""
+    from whittaker_teach.exercises.authoring import make_data
+
+    def spec(wrong, answer_kind="expr"):
+        part = {"what": "w", "points": 1, "wrong": [[wrong, "a hint"]]}
+        return {"title": "t", "symbols": "x+ a+", "parts": {"p": part}}
+
+    rec = [{"exercise": "demo", "part": "p", "text": "x*(a + 1)"}]
+    with pytest.raises(SpecError, match="equals the right answer"):
+        make_data("demo", spec("a*x + x"), rec)
+    assert make_data("demo", spec("a*x"), rec)["parts"][0]["wrong"]
+    num = [{"exercise": "demo", "part": "p", "text": "950"}]
+    with pytest.raises(SpecError, match="equals the right answer"):
+        make_data("demo", spec("950.0000000001"), num)
+    assert make_data("demo", spec("1157"), num)["parts"][0]["wrong"]

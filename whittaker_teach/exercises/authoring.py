@@ -255,9 +255,11 @@ def make_data(ex_id, spec, collected, source_sha256=""):
                                domain, by_name, conditions)
             variables = _split(p["variables"]) if "variables" in p else \
                 sorted(s.name for s in e.free_symbols)
+            wrong = [(expr(w, f"the wrong answer of part {name!r}"), msg)
+                     for w, msg in p.get("wrong", [])]
+            _wrong_is_wrong(ex_id, name, wrong, e, domain, by_name, conditions, p.get("rtol"))
             out.update(expected=to_srepr(e), variables=variables,
-                       wrong=[[to_srepr(expr(w, f"the wrong answer of part {name!r}")), msg]
-                              for w, msg in p.get("wrong", [])])
+                       wrong=[[to_srepr(w), msg] for w, msg in wrong])
         parts.append(out)
     return {"format": FORMAT, "id": ex_id, "title": spec["title"],
             "equations": spec.get("equations", ""), "solvers": spec.get("solvers", False),
@@ -269,6 +271,23 @@ def make_data(ex_id, spec, collected, source_sha256=""):
             "domain": domain,
             "conditions": [to_srepr(c) for c in conditions],
             "parts": parts}
+
+
+def _wrong_is_wrong(ex_id, name, wrong, answer, domain, by_name, conditions, rtol=None):
+    """Refuse a ``wrong`` entry equal to the right answer: its message would tell a
+    student with the right answer that it is wrong (review C, gap 7)."""
+    from .compare import Domain, equal
+    dom = Domain({by_name[k]: domain_range(v) for k, v in domain.items()}, tuple(conditions))
+    for w, _ in wrong:
+        if not w.free_symbols and not answer.free_symbols:
+            same = abs(complex(w) - complex(answer)) <= (1e-10 if rtol is None else rtol) \
+                * max(abs(complex(answer)), 1e-300)
+        else:
+            same = equal(w, answer, dom, 0)
+        if same:
+            raise SpecError(f"{ex_id}: the 'wrong' answer {sp.sstr(w)[:60]} of part {name!r} "
+                            "equals the right answer on the domain: a student who gives it "
+                            "would be told it is wrong")
 
 
 def _same_form(ex_id, name, form, answer, domain, by_name, conditions):
