@@ -154,3 +154,14 @@ def test_no_exercise_needs_a_private_function(ex_id):
             assert not any(a.name.startswith("_") for a in node.names), ex_id
             assert not any(part.startswith("_") for part in (node.module or "").split(".")), \
                 f"{ex_id}: imports from {node.module}"
+
+
+def test_every_exercise_has_a_level_and_a_time_in_the_index():
+    """Review C, gap 5: each exercise notebook is listed in exercises/index.md with its
+    level (Warm-up, Standard or Challenge) and the time a student should plan for."""
+    import re
+    index = (ROOT / "exercises" / "index.md").read_text(encoding="utf-8")
+    rows = dict(re.findall(r"^\| \[.*?\]\(solutions/([\w-]+)\) \| ([^|]*) \|", index, re.M))
+    assert set(rows) == set(SOURCES)
+    for ex_id, cell in rows.items():
+        assert re.fullmatch(r"(Warm-up|Standard|Challenge), \d+ min", cell.strip()), (ex_id, cell)
