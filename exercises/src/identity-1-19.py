@@ -24,7 +24,8 @@
 #    $\Omega_{\dot x\dot x}\,\dfrac{\partial\dot x}{\partial\theta'} + \Omega_{\dot x\theta'}$,
 #    with step 1 substituted, and simplified.
 #
-# Then compare with $\dfrac{1}{\dot x}\dfrac{\partial\Omega}{\partial\theta'}$: that is (1.19).
+# Which of the paper's identities have you just proved for this $\Omega$? (Not
+# checked: the solution says.)
 
 # %% exercise
 EXERCISE = {
@@ -36,13 +37,13 @@ EXERCISE = {
                "h": "energy"},
     "parts": {
         "dxdot_dthetaprime": {
-            "what": "d xdot/d theta' solved from (1.14)", "points": 1,
+            "what": "d xdot/d theta' solved from (1.14)", "points": 2,
             "variables": "xdot theta thetaprime m J b k",
             "why_not": {"h": "keep xdot as a symbol: it stands for qdot_eps(q', q, h) of (1.12)"},
             "success": "From (1.14): d xdot/d theta' = -xdot J theta'/(m + J theta'^2); "
                        "b drops out."},
         "dLstar_dthetaprime": {
-            "what": "dL*/d theta' from (1.17), with (1.14) substituted", "points": 2,
+            "what": "dL*/d theta' from (1.17), with (1.14) substituted", "points": 1,
             "variables": "xdot theta thetaprime m J b k",
             "why_not": {"h": "keep xdot as a symbol: it stands for qdot_eps(q', q, h) of (1.12)"},
             "success": "dL*/d theta' = J xdot theta' + b cos(theta) = (1/xdot) dOmega/d theta': "
