@@ -1,3 +1,9 @@
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
 import pytest
 import sympy as sp
 from sympy.physics.mechanics import dynamicsymbols
@@ -5,6 +11,32 @@ from sympy.physics.mechanics import dynamicsymbols
 import whittaker_teach as wt
 
 T = dynamicsymbols._t
+ROOT = Path(__file__).resolve().parents[2]
+
+#: a meta-path finder that makes numpy, scipy and matplotlib unimportable
+NUMERICS_BLOCKER = textwrap.dedent(r"""
+    import importlib.abc, sys
+    class Block(importlib.abc.MetaPathFinder):
+        def find_spec(self, name, path=None, target=None):
+            if name.split(".")[0] in ("numpy", "scipy", "matplotlib"):
+                raise ModuleNotFoundError(name, name=name)
+            return None
+    sys.meta_path.insert(0, Block())
+""")
+
+
+@pytest.fixture
+def run_without_numerics():
+    """Run ``code`` in a fresh Python where numpy, scipy and matplotlib cannot be
+    imported (as in the browser's Pyodide) and return its stdout; fail with its stderr."""
+    def run(code, timeout=600):
+        env = dict(os.environ, PYTHONHASHSEED="0",
+                   PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
+        r = subprocess.run([sys.executable, "-c", NUMERICS_BLOCKER + textwrap.dedent(code)],
+                           cwd=ROOT, env=env, capture_output=True, text=True, timeout=timeout)
+        assert r.returncode == 0, r.stderr[-3000:]
+        return r.stdout
+    return run
 
 
 @pytest.fixture(scope="session")
