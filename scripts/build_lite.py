@@ -5,13 +5,25 @@
 1. fetches Pyodide's core files (npm) and the pinned pure-Python wheels (PyPI)
    once (``fetch_lite.py``, stamp files);
 2. builds the ``whittaker_teach`` wheel from the tree (``pip wheel --no-deps``);
-3. writes a ``pyodide-lock.json`` that lists exactly the wheels served, each with
+3. byte-compiles every served wheel and Pyodide's ``python_stdlib.zip`` with the
+   served Pyodide's own CPython (``pyc_lite.py``: checked-hash ``.pyc`` beside
+   every ``.py``; SymPy's and mpmath's tests left out), so that no module is
+   compiled from source in the browser;
+4. writes a ``pyodide-lock.json`` that lists exactly the wheels served, each with
    the sha256 of the served file (Pyodide checks it before loading), so that
    ``import whittaker_teach`` (or ``sympy``) loads them with no ``%pip`` cell;
-4. writes the lite copies of every chapter notebook, every student exercise
+   the kernel's own wheels (piplite, pyodide-kernel, its ipykernel stand-in) are
+   served and listed too (IPython with one import made lazy: ``WHEEL_PATCHES``),
+   and the kernel loads all of its packages from that lock
+   in one parallel ``loadPackage`` while Pyodide starts
+   (``loadPyodideOptions.packages``) instead of installing them one by one through
+   micropip and piplite; with them a small start-up wheel (``STARTUP``, run as
+   PYTHONSTARTUP) that imports SymPy and whittaker_teach in the background once
+   the kernel is ready;
+5. writes the lite copies of every chapter notebook, every student exercise
    notebook and the "your own system" notebook (``lite_notebooks.py``; they
    exist only in the build, so they are never stale);
-5. runs ``jupyter lite build`` with the kernel configured for the local Pyodide
+6. runs ``jupyter lite build`` with the kernel configured for the local Pyodide
    (``pyodideUrl``) and ``disablePyPIFallback: true``: nothing is fetched from
    outside the site at run time.
 
@@ -37,6 +49,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import fetch_lite  # noqa: E402
 import lite_notebooks as ln  # noqa: E402
+import pyc_lite  # noqa: E402
 
 ROOT = fetch_lite.ROOT
 #: the notebook of the "your own system" template (stored with outputs in book/)
@@ -44,6 +57,22 @@ OWN_SYSTEM = "book/your-own-system"
 #: the JupyterLite application the launch buttons open
 LITE_APP = "lab/index.html"
 KERNEL_PLUGIN = "@jupyterlite/pyodide-kernel-extension:kernel"
+#: the kernel's own wheels (shipped in its labextension's pypi/ folder), served
+#: from the Pyodide folder and listed in the lock like the others
+KERNEL_WHEELS = ("piplite", "pyodide_kernel", "ipykernel")
+#: what the kernel's worker installs before ``import pyodide_kernel`` (its
+#: initPackageManager / initKernel), under the names it checks
+#: ``loadPyodideOptions.packages`` for: listed there, they are loaded from the
+#: lock while Pyodide starts, in one parallel loadPackage, and skipped later
+KERNEL_PACKAGES = ("micropip", "piplite", "ipykernel", "comm", "pyodide-kernel",
+                   "jedi", "ipython")
+#: the kernel's start-up file (PYTHONSTARTUP): imports SymPy and whittaker_teach
+#: in the background once the kernel is ready (scripts/lite_kernel/), served as a
+#: small wheel of its own, preloaded with the kernel's packages
+STARTUP = Path(__file__).resolve().parent / "lite_kernel" / "wt_lite_startup.py"
+STARTUP_PACKAGE = "wt-lite-startup"
+STARTUP_PATH = f"/lib/python{fetch_lite.PYODIDE_PYTHON}/site-packages/wt_lite_startup.py"
+PRELOAD = KERNEL_PACKAGES + (STARTUP_PACKAGE,)
 
 
 def lite_path(docname: str) -> str | None:
@@ -206,6 +235,104 @@ def write_lock(upstream_lock: Path, wheels: list[Path], dest: Path) -> dict:
 
 
 # ------------------------------------------------------------------ the build
+#: source patches of served third-party wheels: {wheel name: [(member, old, new)]}.
+#: ``import IPython`` imports ``IPython.terminal.embed`` for its ``embed``, which
+#: pulls in the terminal shell and all of prompt_toolkit, for a terminal the
+#: browser kernel never has: IPython + pyodide_kernel took 1.4 s to import in
+#: Pyodide under node, 1.0 s without it (2-core machine at load 6; see
+#: scripts/profile_lite_node.mjs). ``embed`` becomes a function that imports it
+#: when called. The build fails if the text is not found.
+WHEEL_PATCHES = {
+    "ipython": [("IPython/__init__.py",
+                 "from .terminal.embed import embed\n",
+                 "def embed(**kwargs):\n"
+                 "    # (whittaker-teach's lite site: imported when called, see\n"
+                 "    # scripts/build_lite.py WHEEL_PATCHES)\n"
+                 "    from .terminal.embed import embed as _embed\n"
+                 "    return _embed(**kwargs)\n")],
+}
+
+
+def patch_wheel(whl: Path, patches, dest: Path) -> Path:
+    """A copy of ``whl`` in ``dest`` with ``patches`` applied (RECORD updated)."""
+    import base64
+    dest.mkdir(parents=True, exist_ok=True)
+    out = dest / whl.name
+    changed = {}
+    with zipfile.ZipFile(whl) as zin, zipfile.ZipFile(out, "w") as zout:
+        for member, old, new in patches:
+            text = zin.read(member).decode("utf-8")
+            if text.count(old) != 1:
+                sys.exit(f"build_lite: {whl.name}: the patch of {member} does not apply "
+                         f"(WHEEL_PATCHES; a new version?)")
+            changed[member] = text.replace(old, new).encode("utf-8")
+        for info in zin.infolist():
+            data = changed.get(info.filename)
+            if data is None:
+                data = zin.read(info)
+                if info.filename.endswith(".dist-info/RECORD"):
+                    lines = data.decode().splitlines()
+                    for i, line in enumerate(lines):
+                        name = line.split(",", 1)[0]
+                        if name in changed:
+                            digest = base64.urlsafe_b64encode(
+                                hashlib.sha256(changed[name]).digest()).rstrip(b"=").decode()
+                            lines[i] = f"{name},sha256={digest},{len(changed[name])}"
+                    data = ("\n".join(lines) + "\n").encode()
+            zout.writestr(info, data)
+    return out
+
+
+def patched(wheels: list[Path], dest: Path) -> list[Path]:
+    """``wheels``, with those named in WHEEL_PATCHES replaced by patched copies."""
+    if dest.exists():
+        shutil.rmtree(dest)
+    return [patch_wheel(w, WHEEL_PATCHES[_norm(w.name.split("-", 1)[0])], dest)
+            if _norm(w.name.split("-", 1)[0]) in WHEEL_PATCHES else w for w in wheels]
+
+
+def build_startup_wheel(dest: Path) -> Path:
+    """The wheel of the kernel's start-up module (``STARTUP``), reproducibly."""
+    import base64
+    name, version = "wt_lite_startup", "1.0"
+    dist = f"{name}-{version}.dist-info"
+    files = {
+        f"{name}.py": STARTUP.read_bytes(),
+        f"{dist}/METADATA": (f"Metadata-Version: 2.1\nName: {STARTUP_PACKAGE}\n"
+                             f"Version: {version}\nSummary: the start-up file of "
+                             f"whittaker-teach's in-browser kernel\n").encode(),
+        f"{dist}/WHEEL": b"Wheel-Version: 1.0\nGenerator: scripts/build_lite.py\n"
+                         b"Root-Is-Purelib: true\nTag: py3-none-any\n",
+        f"{dist}/top_level.txt": f"{name}\n".encode(),
+    }
+    record = "".join(
+        f"{n},sha256={base64.urlsafe_b64encode(hashlib.sha256(d).digest()).rstrip(b'=').decode()},"
+        f"{len(d)}\n" for n, d in files.items()) + f"{dist}/RECORD,,\n"
+    files[f"{dist}/RECORD"] = record.encode()
+    dest.mkdir(parents=True, exist_ok=True)
+    whl = dest / f"{name}-{version}-py3-none-any.whl"
+    with zipfile.ZipFile(whl, "w", zipfile.ZIP_DEFLATED) as z:
+        for n, d in files.items():
+            info = zipfile.ZipInfo(n, date_time=(2020, 2, 2, 0, 0, 0))
+            info.compress_type = zipfile.ZIP_DEFLATED
+            info.external_attr = 0o644 << 16
+            z.writestr(info, d)
+    return whl
+
+
+def kernel_wheels() -> list[Path]:
+    """The kernel's own wheels (piplite, pyodide-kernel, ipykernel stand-in)."""
+    pypi = Path(_kernel_labextensions()) / "@jupyterlite" / "pyodide-kernel-extension" \
+        / "static" / "pypi"
+    found = []
+    for name in KERNEL_WHEELS:
+        hits = sorted(pypi.glob(f"{name}-*.whl"))
+        if len(hits) != 1:
+            sys.exit(f"build_lite: expected one {name} wheel in {pypi}, found {hits}")
+        found.append(hits[0])
+    return found
+
+
 def lite_config() -> dict:
     return {
         "jupyter-lite-schema-version": 0,
@@ -217,6 +344,8 @@ def lite_config() -> dict:
                     # the local copy (the build's pyodide addon sets the same)
                     "pyodideUrl": "./static/pyodide/pyodide.mjs",
                     "disablePyPIFallback": True,
+                    "loadPyodideOptions": {"packages": list(PRELOAD),
+                                           "env": {"PYTHONSTARTUP": STARTUP_PATH}},
                 },
             },
         },
@@ -252,11 +381,19 @@ def build(out: Path, work: Path, pyodide_version: str = fetch_lite.PYODIDE_VERSI
         shutil.rmtree(src)
     static = src / "static" / "pyodide"
     static.mkdir(parents=True)
+    wheels, stdlib = pyc_lite.precompile(
+        pyodide_dir, patched(sorted(wheels_dir.glob("*.whl")), work / f"patched{suffix}")
+        + kernel_wheels() + [build_startup_wheel(work / f"startup{suffix}"), pkg],
+        work / f"pyc{suffix}", pyodide_dir / "python_stdlib.zip")
     for name in fetch_lite.CORE_FILES:
-        if name != "pyodide-lock.json":
+        if name == "python_stdlib.zip":
+            shutil.copy2(stdlib, static / name)
+        elif name != "pyodide-lock.json":
             shutil.copy2(pyodide_dir / name, static / name)
-    lock = write_lock(pyodide_dir / "pyodide-lock.json",
-                      sorted(wheels_dir.glob("*.whl")) + [pkg], static)
+    lock = write_lock(pyodide_dir / "pyodide-lock.json", wheels, static)
+    missing = [p for p in PRELOAD if _norm(p) not in lock["packages"]]
+    if missing:
+        sys.exit(f"build_lite: the kernel preloads {missing}, which the lock does not list")
     docs = write_notebooks(src / "files", root)
     (src / "jupyter-lite.json").write_text(json.dumps(lite_config(), indent=2) + "\n")
     (src / "overrides.json").write_text(json.dumps(SETTINGS_OVERRIDES, indent=2) + "\n")
@@ -286,7 +423,8 @@ def check_config(out: Path) -> None:
     config = json.loads((out / "jupyter-lite.json").read_text())["jupyter-config-data"]
     kernel = config.get("litePluginSettings", {}).get(KERNEL_PLUGIN, {})
     if kernel.get("pyodideUrl") != "./static/pyodide/pyodide.mjs" \
-            or kernel.get("disablePyPIFallback") is not True:
+            or kernel.get("disablePyPIFallback") is not True \
+            or kernel.get("loadPyodideOptions", {}).get("packages") != list(PRELOAD):
         sys.exit(f"build_lite: {out}/jupyter-lite.json does not point the kernel at the "
                  f"local Pyodide with the PyPI fallback off: {kernel}")
 

@@ -4,13 +4,27 @@
 
 The standard library's static server, with the MIME types Pyodide needs set
 explicitly (``.mjs`` as JavaScript for module workers, ``.wasm`` for streaming
-compilation) rather than taken from the machine's /etc/mime.types.
+compilation) rather than taken from the machine's /etc/mime.types, and with
+caching made explicit: every file is sent with ``Cache-Control: no-cache`` and an
+``ETag`` (a hash of its content), and a request whose
+``If-None-Match`` names the current ETag is answered ``304 Not Modified`` with no
+body, over HTTP/1.1 (Chromium refetches an HTTP/1.0 response whole instead of
+revalidating it). So a second visit re-uses the browser's cached copy of every
+file (and V8's cached compilation of pyodide.asm.wasm) after one cheap
+revalidation each, and a
+rebuilt file is never taken from the cache: the served wheels are checked against
+the sha256 in pyodide-lock.json, so a stale cached wheel would break the kernel.
+(The standard server's ``If-Modified-Since`` test is not used: JupyterLite gives
+its files a fixed date in 1985 and the build copies files with their original
+dates, so a changed file can have the date of the cached one, or an older one.)
 """
 from __future__ import annotations
 
 import argparse
 import functools
+import hashlib
 import http.server
+import os
 import threading
 from pathlib import Path
 
@@ -20,8 +34,59 @@ EXTRA_TYPES = {".mjs": "text/javascript", ".js": "text/javascript",
                ".ipynb": "application/json", ".svg": "image/svg+xml"}
 
 
+CACHE_CONTROL = "no-cache"
+_ETAGS: dict = {}
+_ETAGS_LOCK = threading.Lock()
+
+
+def etag(path) -> str:
+    """The ETag of a file: a hash of its content (memoized per file state).
+
+    Not the modification time: JupyterLite's build gives its application files
+    one fixed date (1985-10-26), and the build copies fetched files with their
+    original dates, so a changed file can keep the date (and size) of the old one.
+    The memo key has the inode change time, which every write updates."""
+    st = os.stat(path)
+    key = (os.fspath(path), st.st_ino, st.st_size, st.st_mtime_ns, st.st_ctime_ns)
+    with _ETAGS_LOCK:
+        tag = _ETAGS.get(key)
+    if tag is None:
+        h = hashlib.blake2b(digest_size=12)
+        with open(path, "rb") as f:
+            for chunk in iter(lambda: f.read(1 << 20), b""):
+                h.update(chunk)
+        tag = f'"{h.hexdigest()}"'
+        with _ETAGS_LOCK:
+            _ETAGS[key] = tag
+    return tag
+
+
 class Handler(http.server.SimpleHTTPRequestHandler):
     extensions_map = {**http.server.SimpleHTTPRequestHandler.extensions_map, **EXTRA_TYPES}
+    # HTTP/1.1 (keep-alive; every response has a Content-Length): Chromium does
+    # not revalidate a cached HTTP/1.0 response, it fetches the file again whole
+    protocol_version = "HTTP/1.1"
+
+    def send_head(self):
+        path = self.translate_path(self.path)
+        if os.path.isdir(path):
+            # the standard server redirects ".../dir" to ".../dir/" (no ETag then)
+            slash = self.path.split("?", 1)[0].split("#", 1)[0].endswith("/")
+            path = os.path.join(path, "index.html") if slash else ""
+        self._etag = etag(path) if os.path.isfile(path) else None
+        del self.headers["If-Modified-Since"]          # the ETag alone decides
+        if self._etag is not None and self._etag in [
+                t.strip() for t in self.headers.get("If-None-Match", "").split(",")]:
+            self.send_response(http.HTTPStatus.NOT_MODIFIED)
+            self.end_headers()
+            return None
+        return super().send_head()
+
+    def end_headers(self):
+        if getattr(self, "_etag", None) is not None:
+            self.send_header("ETag", self._etag)
+            self.send_header("Cache-Control", CACHE_CONTROL)
+        super().end_headers()
 
     def log_message(self, fmt, *args):  # quiet unless asked
         if getattr(self.server, "verbose", False):

@@ -6,6 +6,8 @@
 #                  CJK font: Chromium embeds it as a named font; Noto CJK, a CFF font,
 #                  would be drawn as unnamed Type 3 glyphs)
 #   bubblewrap     bwrap, the sandbox of each graded submission (`grade`)
+#   nodejs, npm    npm fetches Pyodide; node runs it at build time to compile the
+#                  in-browser site's bytecode (scripts/pyc_lite.py)
 # Installed with apt-get when running as root (or with passwordless sudo);
 # otherwise the script fails and says what to install.
 set -euo pipefail
@@ -22,6 +24,8 @@ command -v pdftotext >/dev/null 2>&1 && command -v pdfimages >/dev/null 2>&1 || 
 fonts="$(fc-list 2>/dev/null || true)"
 grep -q "WenQuanYi Zen Hei" <<<"$fonts" || missing+=(fonts-wqy-zenhei)
 command -v bwrap >/dev/null 2>&1 || missing+=(bubblewrap)
+command -v node >/dev/null 2>&1 || missing+=(nodejs)
+command -v npm >/dev/null 2>&1 || missing+=(npm)
 
 if ((${#missing[@]} == 0)); then
     exit 0

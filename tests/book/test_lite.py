@@ -13,8 +13,10 @@ import hashlib
 import json
 import os
 import re
+import shutil
 import sys
 import time
+import zipfile
 from pathlib import Path
 from urllib.parse import parse_qs, urljoin, urlsplit
 
@@ -27,6 +29,7 @@ sys.path.insert(0, str(ROOT / "scripts"))
 
 import build_lite  # noqa: E402
 import lite_notebooks  # noqa: E402
+import pyc_lite  # noqa: E402
 
 if not (LITE / "jupyter-lite.json").is_file():
     _msg = f"no lite site at {LITE}: run `make site` (or `make lite`) first"
@@ -79,6 +82,85 @@ def test_lock_lists_exactly_the_served_wheels_with_their_sha256():
     for name in ("sympy", "mpmath", "ipython", "jedi", "comm", "micropip"):
         assert name in lock["packages"], name
     assert not [k for k in lock["packages"] if k in ("numpy", "scipy", "matplotlib")]
+
+
+def test_kernel_loads_its_packages_from_the_lock_while_pyodide_starts():
+    """The kernel's packages (micropip, piplite, pyodide-kernel, ipykernel, IPython,
+    jedi, comm) are preloaded by loadPyodide from the site's lock, under the names
+    the kernel's worker checks (it then skips installing them through piplite)."""
+    settings = _config()["litePluginSettings"][build_lite.KERNEL_PLUGIN]
+    preload = settings["loadPyodideOptions"]["packages"]
+    assert preload == list(build_lite.PRELOAD)
+    assert {"micropip", "piplite", "ipykernel", "comm", "pyodide-kernel", "jedi",
+            "ipython"} <= set(preload)
+    lock = json.loads((PYODIDE / "pyodide-lock.json").read_text())["packages"]
+    for name in preload:
+        entry = lock[name]
+        assert (PYODIDE / entry["file_name"]).is_file(), name
+        for dep in entry["depends"]:                   # and what they need
+            assert dep.lower().replace("_", "-") in lock, (name, dep)
+    assert lock["pyodide-kernel"]["imports"] == ["pyodide_kernel"]
+
+
+def test_the_kernel_start_up_file_is_served_and_set():
+    """PYTHONSTARTUP names the start-up module's path in Pyodide's site-packages;
+    its wheel is preloaded and carries the current scripts/lite_kernel/ source; as
+    a start-up file (not a module) it only starts the background import."""
+    options = _config()["litePluginSettings"][build_lite.KERNEL_PLUGIN]["loadPyodideOptions"]
+    assert options["env"]["PYTHONSTARTUP"] == build_lite.STARTUP_PATH
+    assert build_lite.STARTUP_PACKAGE in options["packages"]
+    lock = json.loads((PYODIDE / "pyodide-lock.json").read_text())["packages"]
+    entry = lock[build_lite.STARTUP_PACKAGE]
+    site = f"/lib/python{build_lite.fetch_lite.PYODIDE_PYTHON}/site-packages/"
+    with zipfile.ZipFile(PYODIDE / entry["file_name"]) as z:
+        member = build_lite.STARTUP_PATH.removeprefix(site)
+        assert z.read(member) == build_lite.STARTUP.read_bytes()
+    # run as a start-up file: defines nothing in the user's namespace, calls start()
+    calls = []
+    fake = type(sys)("wt_lite_startup")
+    fake.start = lambda: calls.append(1)
+    ns = {"__name__": "__main__"}
+    saved = sys.modules.get("wt_lite_startup")
+    sys.modules["wt_lite_startup"] = fake
+    try:
+        exec(compile(build_lite.STARTUP.read_text(), "startup", "exec"), ns)
+    finally:
+        if saved is None:
+            sys.modules.pop("wt_lite_startup")
+        else:
+            sys.modules["wt_lite_startup"] = saved
+    assert calls == [1] and set(ns) == {"__name__", "__builtins__"}
+
+
+def test_the_served_ipython_imports_its_terminal_only_when_asked():
+    """The served IPython's ``embed`` imports IPython.terminal when called (the
+    kernel never starts a terminal; WHEEL_PATCHES in scripts/build_lite.py)."""
+    lock = json.loads((PYODIDE / "pyodide-lock.json").read_text())["packages"]
+    with zipfile.ZipFile(PYODIDE / lock["ipython"]["file_name"]) as z:
+        init = z.read("IPython/__init__.py").decode()
+    assert "\nfrom .terminal.embed import embed\n" not in init
+    assert "def embed(**kwargs):" in init and "from .terminal.embed import embed as _embed" in init
+
+
+def test_served_modules_are_precompiled_for_the_served_pyodide():
+    """Every module of every served wheel and of the served stdlib zip has the
+    checked-hash .pyc of its own source, for the magic number and cache tag of the
+    Pyodide that the site serves (asked from that Pyodide itself, under node)."""
+    if not shutil.which("node"):
+        pytest.skip("node is needed to start the served Pyodide outside a browser")
+    info = pyc_lite.pyodide_info(PYODIDE)
+    magic = bytes.fromhex(info["magic"])
+    lock = json.loads((PYODIDE / "pyodide-lock.json").read_text())
+    problems = []
+    for entry in lock["packages"].values():
+        problems += pyc_lite.check_wheel(PYODIDE / entry["file_name"], magic,
+                                         info["cache_tag"])
+    problems += pyc_lite.check_stdlib(PYODIDE / "python_stdlib.zip", magic)
+    assert problems == [], problems[:10]
+    # SymPy's and mpmath's own test suites are not served
+    for name in ("sympy", "mpmath"):
+        with zipfile.ZipFile(PYODIDE / lock["packages"][name]["file_name"]) as z:
+            assert not [n for n in z.namelist() if "/tests/" in n], name
 
 
 def test_every_chapter_and_exercise_is_in_the_lite_site():
@@ -335,7 +417,9 @@ def test_geometry_and_rolling_rooms_run_in_the_browser(lite):
     """Chapters 13 and 14 keep their stored outputs in the browser (their figures need
     matplotlib), but their symbolic parts run there: the sledge's non-holonomic bracket
     and its Jacobiator (chapter 13), and the Chaplygin ball taken in through the
-    mechanics input with x and y dependent (chapter 14), in Pyodide."""
+    mechanics input with x and y dependent (chapter 14), in Pyodide. Every module
+    imported on the way (SymPy, whittaker_teach, stdlib) is loaded from its served
+    .pyc: none is compiled from source in the browser."""
     lab = lite.launch("book/your-own-system.html")
     wait_notebook(lab)
     wait_kernel_idle(lab)
@@ -344,18 +428,36 @@ def test_geometry_and_rolling_rooms_run_in_the_browser(lite):
     lab.keyboard.press("Control+A")
     lab.keyboard.press("Delete")
     lab.keyboard.insert_text(
+        # count the modules compiled from source (no usable .pyc) while importing
+        "import importlib._bootstrap_external as _bx, zipimport as _zi\n"
+        "_src = []\n"
+        "_s2c = _bx.SourceLoader.source_to_code\n"
+        "_bx.SourceLoader.source_to_code = lambda self, data, path, **kw: "
+        "(_src.append(path), _s2c(self, data, path, **kw))[1]\n"
+        "_cs = _zi._compile_source\n"
+        "_zi._compile_source = lambda path, source: (_src.append(path), _cs(path, source))[1]\n"
         "import whittaker_teach as wt\n"
         "from whittaker_teach import geometry as geo, rolling\n"
         "nb = geo.nonholonomic_bracket(wt.examples.sledge())\n"
         "print('JAC', nb.structure.jacobiator(*nb.symbols('x', 'p_x', 'p_theta')))\n"
         "ball = rolling.chaplygin_ball()\n"
-        "print('BALL', ball.name, ball.dependent_coordinates)\n")
+        "print('BALL', ball.name, ball.dependent_coordinates)\n"
+        "import tomllib, wave\n"               # stdlib modules not imported before
+        "print('FROM_SOURCE', len(_src), _src[:5])\n"
+        "import sys, wt_lite_startup\n"
+        "await wt_lite_startup.task\n"
+        "print('WARM', wt_lite_startup.error, [m in sys.modules for m in "
+        "('sympy', 'whittaker_teach', 'IPython.terminal.embed', 'prompt_toolkit')])\n")
     lab.keyboard.press("Control+Enter")
     out = cell.locator(".jp-OutputArea")
-    out.get_by_text("BALL").wait_for(timeout=RUN_ALL_S * 1000)
+    out.get_by_text("WARM").wait_for(timeout=RUN_ALL_S * 1000)
     text = out.inner_text()
     assert "JAC tan(theta)" in text, text
     assert "BALL chaplygin_ball [x(t), y(t)]" in text, text
+    # SymPy, whittaker_teach and the stdlib came from their precompiled .pyc files
+    assert "FROM_SOURCE 0 []" in text, text
+    # the start-up file imported SymPy and whittaker_teach; the kernel no terminal
+    assert "WARM None [True, True, False, False]" in text, text
     assert _errors(lab).count() == 0, _errors(lab).all_inner_texts()[:3]
     assert lite.outside == [], lite.outside
 

@@ -39,14 +39,14 @@ def run(tmp_path, b, chromium):
 
 
 def test_nothing_is_installed_when_everything_is_there(tmp_path):
-    b = fake_bin(tmp_path, ["pdftotext", "pdfimages", "bwrap"])
+    b = fake_bin(tmp_path, ["pdftotext", "pdfimages", "bwrap", "node", "npm"])
     r = run(tmp_path, b, str(b / "pdftotext"))
     assert r.returncode == 0, r.stderr
     assert not (tmp_path / "calls").exists()
 
 
 def test_what_is_missing_is_named(tmp_path):
-    b = fake_bin(tmp_path, ["pdftotext", "pdfimages"])
+    b = fake_bin(tmp_path, ["pdftotext", "pdfimages", "node", "npm"])
     r = run(tmp_path, b, str(b / "pdftotext"))
     if os.geteuid() == 0:       # root: apt-get is called for exactly the missing one
         assert r.returncode == 0, r.stderr
