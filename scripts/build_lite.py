@@ -39,7 +39,6 @@ import json
 import os
 import re
 import shutil
-import subprocess
 import sys
 import tempfile
 import zipfile
@@ -177,16 +176,7 @@ def build_package_wheel(dest: Path, withhold=()) -> Path:
     return whl
 
 
-def _norm(name: str) -> str:
-    return re.sub(r"[-_.]+", "-", name).lower()
-
-
-def _sha256(path: Path) -> str:
-    h = hashlib.sha256()
-    with open(path, "rb") as f:
-        for chunk in iter(lambda: f.read(1 << 20), b""):
-            h.update(chunk)
-    return h.hexdigest()
+_norm, _sha256 = pyc_lite._norm, pyc_lite._sha256     # a wheel's name, a file's digest
 
 
 def _wheel_meta(whl: Path):
