@@ -3,7 +3,8 @@ cgroup v2 where the v2 hierarchy has a controller, v1 otherwise, per-process lim
 (issue 37, item 6).  The v2 paths are tested only here, against a fake tree whose kernel
 part (subtree_control, moving a process) the FakeKernel below plays; this machine is
 hybrid (v1 controllers, an empty cgroup2), so they have not run on a real v2-only
-machine.  The v1 path and the CPU quota also run for real (last test, root only)."""
+machine here; `scripts/cgroup2_vm.py` runs them for real in a v2-only VM. The v1 path
+and the CPU quota also run for real (last test, root only)."""
 import errno
 import os
 import subprocess
@@ -238,3 +239,44 @@ def test_the_cpu_quota_holds_on_this_machine():
         time.sleep(0.1)
         g.close()
     sandbox.release()
+
+
+def test_cgroup_limits_alone_gives_back_what_it_prepared(tmp_path, monkeypatch):
+    """`cgroup_limits()` asked on its own (no grading run holds the hierarchy), with the
+    caller alone in a delegated v2 group: it answers, then the caller is back in its
+    group, the controllers are disabled again and no wt-grade-*-grader leaf is left.
+    Found on a real v2-only kernel (scripts/cgroup2_vm.py), where the leaf stayed."""
+    pid = os.getpid()
+    top = group_dir(tmp_path / "unified", controllers="cpu io memory pids",
+                    enabled="cpu io memory pids")
+    scope = group_dir(top / "grade.scope", procs=str(pid))
+    real_find = sandbox.Hierarchy.__dict__["find"].__func__
+
+    def fake_find(cls):                    # this machine's tree is the fake one
+        h = real_find(FakeKernel, mountinfo(top), "0::/grade.scope\n")
+        h.__class__, FakeKernel.top = FakeKernel, top
+        return h
+    monkeypatch.setattr(sandbox.Hierarchy, "find", classmethod(fake_find))
+
+    def rmdir(d):                          # the kernel takes a group's files with it
+        try:
+            for f in d.iterdir():
+                f.unlink()
+            d.rmdir()
+            return True
+        except OSError:
+            return False
+    monkeypatch.setattr(sandbox, "_rmdir", rmdir)
+    monkeypatch.setattr(sandbox, "_HIERARCHY", [])
+    assert sandbox.cgroup_limits() == ["cpu", "memory", "pids"]
+    assert read(scope, "cgroup.procs") == str(pid)
+    assert read(scope, "cgroup.subtree_control") == ""
+    assert sorted(p.name for p in scope.iterdir() if p.is_dir()) == []
+    assert sandbox._HIERARCHY == []
+    # held by a run (grade prepares it and releases it at the end): left as it is
+    h = sandbox.hierarchy()
+    assert sandbox.cgroup_limits() == ["cpu", "memory", "pids"]
+    assert sandbox._HIERARCHY == [h] and read(scope / f"wt-grade-{pid}-grader",
+                                              "cgroup.procs") == str(pid)
+    sandbox.release()
+    assert read(scope, "cgroup.procs") == str(pid)

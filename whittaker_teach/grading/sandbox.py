@@ -554,12 +554,21 @@ def _events(path):
 
 def cgroup_limits():
     """Which limits cgroups enforce over all of a submission's processes here: a subset of
-    ['cpu', 'memory', 'pids'] (empty: per-process limits only)."""
+    ['cpu', 'memory', 'pids'] (empty: per-process limits only).
+
+    Where the hierarchy was prepared only to answer this (no grading run holds it), it
+    is given back: on a v2 machine the caller returns from its leaf to its own group,
+    and the leaf and the enabled controllers go (found on a real v2-only kernel by
+    ``scripts/cgroup2_vm.py``: the leaf was left behind)."""
+    with _HIERARCHY_LOCK:
+        prepared = bool(_HIERARCHY)        # by a caller (grade) that releases it itself
     group = Cgroups.make(f"wt-grade-probe-{os.getpid()}", Limits())
     try:
         return group.enforced
     finally:
         group.close()
+        if not prepared:
+            release()
 
 
 def _rmdir(d):
