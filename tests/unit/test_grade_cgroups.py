@@ -1,10 +1,11 @@
 """Which cgroups a grader uses, decided and written against fake cgroup trees (tmp_path):
 cgroup v2 where the v2 hierarchy has a controller, v1 otherwise, per-process limits last
-(issue 37, item 6).  The v2 paths are tested only here, against a fake tree whose kernel
-part (subtree_control, moving a process) the FakeKernel below plays; this machine is
-hybrid (v1 controllers, an empty cgroup2), so they have not run on a real v2-only
-machine here; `scripts/cgroup2_vm.py` runs them for real in a v2-only VM. The v1 path
-and the CPU quota also run for real (last test, root only)."""
+(issue 37, item 6).  Here the v2 paths run against a fake tree whose kernel part
+(subtree_control, moving a process) the FakeKernel below plays, because this machine is
+hybrid (v1 controllers, an empty cgroup2); `scripts/cgroup2_vm.py` runs the grader's
+tests for real in a VM booted with cgroup v2 only (opt-in: WT_CGROUP2_VM=1,
+tests/integration/test_cgroup2_vm.py).  The v1 path and the CPU quota also run for real
+here (last test, root only)."""
 import errno
 import os
 import subprocess
