@@ -281,3 +281,17 @@ def test_cgroup_limits_alone_gives_back_what_it_prepared(tmp_path, monkeypatch):
                                               "cgroup.procs") == str(pid)
     sandbox.release()
     assert read(scope, "cgroup.procs") == str(pid)
+
+
+def test_a_kernel_that_did_not_start_under_a_small_memory_limit_says_so():
+    """`grade --memory 600` leaves too little address space for ipykernel's threads: every
+    notebook failed with only "the kernel did not start" (seen in the v2 VM and here).
+    The message now names a known exception and points to --memory when it is below
+    the default; a student's own exception name is never echoed."""
+    from whittaker_teach.grading.run import MEMORY_MB, Settings, _failure_text
+    start = {"failure": {"kind": "start", "ename": "MemoryError"}}
+    small = _failure_text(start, Settings(memory_mb=600))
+    assert "MemoryError" in small and "try a larger --memory" in small and "600 MB" in small
+    assert "--memory" not in _failure_text(start, Settings(memory_mb=MEMORY_MB))
+    own = _failure_text({"failure": {"kind": "start", "ename": "Leak_answer_42"}}, Settings())
+    assert own == "the notebook could not be run (the kernel did not start)"

@@ -556,7 +556,13 @@ def _failure_text(result, settings):
             parts.append(f"the kernel died in code cell {c} (it exited, or it was killed: "
                          "out of memory?)")
         elif kind == "start":
-            parts.append("the notebook could not be run (the kernel did not start)")
+            why = _known_exception(f.get("ename")) if f.get("ename") else ""
+            why = "" if why == "an exception of its own" else f": {why}"
+            text = f"the notebook could not be run (the kernel did not start{why})"
+            if settings.memory_mb < MEMORY_MB:     # e.g. --memory 600: too little for a kernel
+                text += (f"; the memory limit is {settings.memory_mb} MB, below the default "
+                         f"{MEMORY_MB} MB: try a larger --memory")
+            parts.append(text)
     errors = result.get("errors")
     if isinstance(errors, list) and not parts:
         for e in errors[:3]:
