@@ -128,6 +128,10 @@ def main(argv=None):
               file=sys.stderr)
         return 2
     out = Path(args.out or CACHE / "runs" / time.strftime("%Y%m%d-%H%M%S")).resolve()
+    if out == Path("/tmp") or Path("/tmp") in out.parents:
+        print("cgroup2_vm: --out must be outside /tmp (the VM mounts its own /tmp over "
+              "it, so nothing written there would come back)", file=sys.stderr)
+        return 2
     out.mkdir(parents=True, exist_ok=True)
     for old in out.glob("*.rc"):
         old.unlink()
