@@ -47,6 +47,22 @@ def _is_test(name):
     return "/tests/" in name or name.startswith("tests/")
 
 
+def _add_pyc(zout, info, data, path, cached, failed):
+    """Compile one .py member (``path``: where Pyodide will see it) and write its .pyc
+    as ``cached`` beside it, with the member's date, compression and mode; the .pyc's
+    bytes, or None (the error appended to ``failed``)."""
+    try:
+        out = pyc(data, path)
+    except (SyntaxError, ValueError) as err:
+        failed.append(f"{info.filename}: {err}")
+        return None
+    pinfo = zipfile.ZipInfo(cached, date_time=info.date_time)
+    pinfo.compress_type = info.compress_type
+    pinfo.external_attr = info.external_attr
+    zout.writestr(pinfo, out)
+    return out
+
+
 def wheel(src, dst, drop_tests):
     done, failed = 0, []
     with zipfile.ZipFile(host(src)) as zin, zipfile.ZipFile(host(dst), "w") as zout:
@@ -64,18 +80,11 @@ def wheel(src, dst, drop_tests):
             top = name.split("/", 1)[0]
             if not name.endswith(".py") or top.endswith((".dist-info", ".data")):
                 continue
-            try:
-                out = pyc(data, f"{SITE}/{name}")
-            except (SyntaxError, ValueError) as err:
-                failed.append(f"{name}: {err}")
-                continue
             cached = importlib.util.cache_from_source(name)
-            pinfo = zipfile.ZipInfo(cached, date_time=info.date_time)
-            pinfo.compress_type = info.compress_type
-            pinfo.external_attr = info.external_attr
-            zout.writestr(pinfo, out)
-            added.append((cached, out))
-            done += 1
+            out = _add_pyc(zout, info, data, f"{SITE}/{name}", cached, failed)
+            if out is not None:
+                added.append((cached, out))
+                done += 1
         # RECORD: the kept files' lines, and one per added .pyc
         kept = set(kept)
         lines = [ln for ln in zin.read(record).decode().splitlines()
@@ -97,16 +106,8 @@ def stdlib(src, dst):
             name = info.filename
             if not name.endswith(".py") or name + "c" in names:
                 continue
-            try:
-                out = pyc(data, f"{STDLIB_ZIP}/{name}")
-            except (SyntaxError, ValueError) as err:
-                failed.append(f"{name}: {err}")
-                continue
-            pinfo = zipfile.ZipInfo(name + "c", date_time=info.date_time)
-            pinfo.compress_type = info.compress_type
-            pinfo.external_attr = info.external_attr
-            zout.writestr(pinfo, out)
-            done += 1
+            if _add_pyc(zout, info, data, f"{STDLIB_ZIP}/{name}", name + "c", failed) is not None:
+                done += 1
     return {"src": src, "dst": dst, "compiled": done, "failed": failed}
 
 
