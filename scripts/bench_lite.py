@@ -11,9 +11,11 @@ Prints
   - the bytes served until the kernel is ready, counted by the static server
     itself, and how many requests it answered (200 / 304);
   - page open → kernel ready (the status bar says "Python (Pyodide) | Idle");
-  - where that time went: JupyterLab's own start-up until the kernel's worker
-    starts, then the kernel's steps (below), and a timeline of the worker's
-    fetches (its Resource Timing entries: start, end, MB over the wire / body);
+  - where that time went, as a timeline: the kernel's worker, started with the
+    page (scripts/lite_early_kernel.py), starting Pyodide and importing IPython
+    while JupyterLab starts, until the kernel asks for Pyodide, then the kernel's
+    own steps (below); and the worker's fetches (its Resource Timing entries:
+    start, end, MB over the wire / body);
   - the first derivation cell (import + ``reduce`` + every step as LaTeX, i.e.
     derived and checked, for the sledge), run right after "Idle", timed inside
     the cell and split into ``import sympy``, ``import whittaker_teach``,
@@ -22,10 +24,11 @@ Prints
     the browser's wall time from pressing Ctrl+Enter to the printed and to the
     typeset output, which also includes loading the SymPy/mpmath/whittaker_teach
     wheels and importing them (or waiting for the start-up file to) and MathJax;
-  - the kernel worker's own steps (loadPyodide, loading the preloaded packages,
-    the kernel's imports; during the cell, loading packages), from performance
-    marks left by a timing wrapper of pyodide.mjs that only the benchmark's
-    server serves (``TIMED_PYODIDE``; the built site is not changed);
+  - the kernel worker's own steps (loadPyodide with the kernel's packages, the
+    kernel's imports; during the cell, loading packages), from performance marks
+    left by the worker started with the page and by a timing wrapper of the
+    site's loader that only the benchmark's server serves (``TIMED_PYODIDE``;
+    the built site is not changed);
 * the same cell in native Python (a fresh process), and the browser/native ratio.
 
 Requests not to 127.0.0.1 are blocked by the browser (as in tests/book/test_lite.py)
@@ -102,20 +105,28 @@ class CountingMixin:
 
 class InstrumentMixin:
     """Serves the site with the kernel pointed at ``TIMED_PYODIDE`` (a wrapper of
-    the site's pyodide.mjs that leaves performance marks in the kernel's worker).
-    Only the benchmark's server does this; the built site is not changed."""
+    the site's loader, static/pyodide/wt-pyodide.mjs, that leaves performance marks
+    in the kernel's worker). Only the benchmark's server does this; the built site
+    is not changed. With ``--no-warm-up``, the kernel's options and those of the
+    worker started with the page (static/pyodide/wt-kernel.worker.mjs) both lose
+    the start-up file, so that the early Pyodide is still the kernel's."""
 
     def do_GET(self):
         path = urlsplit(self.path).path
+        no_warm_up = getattr(self.server, "no_warm_up", False)
         if path.endswith("/lite/jupyter-lite.json"):
             data = json.loads((Path(self.directory) / path.lstrip("/")).read_text())
             kernel = data["jupyter-config-data"]["litePluginSettings"][KERNEL_PLUGIN]
-            kernel["pyodideUrl"] = kernel["pyodideUrl"].replace("pyodide.mjs", TIMED_NAME)
-            if getattr(self.server, "no_warm_up", False):    # --no-warm-up
+            kernel["pyodideUrl"] = kernel["pyodideUrl"].rsplit("/", 1)[0] + "/" + TIMED_NAME
+            if no_warm_up:
                 kernel.get("loadPyodideOptions", {}).get("env", {}).pop("PYTHONSTARTUP", None)
             return self._send_bytes(json.dumps(data).encode(), "application/json")
         if path.endswith("/static/pyodide/" + TIMED_NAME):
             return self._send_bytes(TIMED_PYODIDE.encode(), "text/javascript")
+        if no_warm_up and path.endswith("/static/pyodide/wt-kernel.worker.mjs"):
+            text = (Path(self.directory) / path.lstrip("/")).read_text()
+            text = re.sub(r'"PYTHONSTARTUP": "[^"]*"', "", text)
+            return self._send_bytes(text.encode(), "text/javascript")
         return super().do_GET()
 
     def _send_bytes(self, body: bytes, ctype: str):
@@ -138,29 +149,22 @@ class PlainCountingHandler(InstrumentMixin, CountingMixin, PlainHandler):
 
 KERNEL_PLUGIN = "@jupyterlite/pyodide-kernel-extension:kernel"
 TIMED_NAME = "bench-timed-pyodide.mjs"
-#: the kernel's worker imports this instead of pyodide.mjs: the same loadPyodide,
-#: first without the preloaded packages, then loading them, then the kernel's own
-#: steps (runPythonAsync: micropip/piplite set-up, ``import pyodide_kernel``) and
-#: the cells' package loads, each between two performance marks ("wt:<label>")
-TIMED_PYODIDE = """import { loadPyodide as load } from "./pyodide.mjs";
+#: the kernel's worker imports this instead of wt-pyodide.mjs: the same
+#: loadPyodide (which hands over the Pyodide started with the page, whose own
+#: steps are marked by wt-kernel.worker.mjs), then the kernel's own steps
+#: (runPythonAsync: micropip / piplite set-up, ``import pyodide_kernel``) and the
+#: cells' package loads, each between two performance marks ("wt:<label>")
+TIMED_PYODIDE = """import { loadPyodide as load } from "./wt-pyodide.mjs";
 const mark = (label) => performance.mark("wt:" + label);
 export async function loadPyodide(options) {
-  const packages = options.packages || [];
-  mark("loadPyodide");
-  const py = await load({ ...options, packages: [] });
-  mark("loadPyodide end");
-  if (packages.length) {
-    mark("loadPackage (preloaded: " + packages.join(", ") + ")");
-    await py.loadPackage(packages);
-    mark("loadPackage end");
-  }
+  const py = await load(options);
   for (const name of ["runPythonAsync", "loadPackagesFromImports", "loadPackage"]) {
     const orig = py[name].bind(py);
     py[name] = async (arg, ...rest) => {
       const what = typeof arg === "string" ? arg.trim().split("\\n")[0].slice(0, 60)
                                            : JSON.stringify(arg).slice(0, 60);
-      mark(name + ": " + what);
-      try { return await orig(arg, ...rest); } finally { mark(name + " end"); }
+      mark("kernel: " + name + ": " + what);
+      try { return await orig(arg, ...rest); } finally { mark("kernel: " + name + ": " + what + " end"); }
     };
   }
   return py;
@@ -196,52 +200,62 @@ def _short(url: str) -> str:
     return path.rsplit("/", 1)[-1] or path
 
 
-def _intervals(marks: list[dict]) -> list[tuple[str, float, float]]:
-    """Top-level (label, start ms, end ms) from "label" … "<x> end" mark pairs
-    (nested pairs, e.g. a loadPackage inside a runPythonAsync, are inside theirs)."""
-    out, stack = [], []
+def _intervals(marks: list[dict]) -> list[tuple[str, float, float, int]]:
+    """(label, start ms, end ms, depth) from "label" … "label end" mark pairs, in
+    the order they start; depth 1 for a step inside another (e.g. a loadPackage
+    inside a runPythonAsync). Steps of the worker started with the page and of the
+    kernel may overlap: they are paired by label, not by order."""
+    out, open_ = [], {}
     for m in marks:
-        if m["name"].endswith(" end"):
-            if stack:
-                name, t = stack.pop()
-                if not stack:
-                    out.append((name, t, m["t"]))
+        name = m["name"]
+        if name.endswith(" end") and open_.get(name[:-4]):
+            label = name[:-4]
+            out.append((label, open_[label].pop(), m["t"]))
         else:
-            stack.append((m["name"], m["t"]))
-    return out
+            open_.setdefault(name, []).append(m["t"])
+    out.sort(key=lambda x: (x[1], -x[2]))
+    return [(label, a, b, int(any(a2 <= a and b <= b2 and (a2, b2) != (a, b)
+                                  for _, a2, b2 in out)))
+            for label, a, b in out]
 
 
-def phases(timing: dict, t_open_ms: float, t_ready_ms: float) -> list[tuple[str, float]]:
-    """Kernel start-up phases (name, seconds), from the marks that the timed
-    pyodide.mjs wrapper (``TIMED_PYODIDE``) leaves in the kernel's worker.
+def phases(timing: dict, t_open_ms: float, t_ready_ms: float) -> list[tuple]:
+    """The kernel's start as a timeline: (label, start s, end s, depth), seconds
+    since the page was opened, from the marks left in the kernel's worker by the
+    worker itself (wt-kernel.worker.mjs, started with the page), the site's loader
+    (wt-pyodide.mjs: "kernel asks for Pyodide") and the benchmark's wrapper of it
+    (``TIMED_PYODIDE``: the kernel's own steps).
 
-    The kernel's start-up (jupyterlite-pyodide-kernel's worker): import
-    pyodide.mjs → loadPyodide (fetch and compile the wasm, python_stdlib.zip, start
-    Python) → load the preloaded packages (fetch, check and unpack wheels) →
-    runPythonAsync steps (micropip / piplite set-up, ``import pyodide_kernel``:
-    IPython, jedi, …) → ready; then the page shows "Idle" once the kernel answers.
+    The worker started with the page: loadPyodide (fetch and compile the wasm,
+    python_stdlib.zip, start Python, and load the kernel's packages: fetch, check
+    and unpack wheels) → ``import piplite, pyodide_kernel`` (IPython, jedi, …).
+    Meanwhile JupyterLab starts and opens the notebook, then starts the kernel,
+    which asks for Pyodide (and waits for the early one if it is not yet ready),
+    runs its own set-up steps (quick: their imports are done) and is ready; the
+    page shows "Idle" once the kernel answers.
     """
     origin = timing["origin"]
-    out = [("page open → the kernel's worker starts (JupyterLab's own start-up)",
-            (origin - t_open_ms) / 1000)]
+    since_open = lambda ms: (origin + ms - t_open_ms) / 1000   # noqa: E731
+    out = [("the kernel's worker starts", 0.0, (origin - t_open_ms) / 1000, 0)]
     marks = [m for m in timing.get("marks", []) if origin + m["t"] <= t_ready_ms]
-    prev = 0.0
-    for name, a, b in _intervals(marks):
-        if a - prev > 5:
-            out.append(("  (between: the worker's JS)" if prev == 0 else "  (between)",
-                        (a - prev) / 1000))
-        out.append((name, (b - a) / 1000))
-        prev = b
-    out.append(("last step → kernel ready (\"Idle\" on the page)",
-                (t_ready_ms - origin - prev) / 1000))
-    return out
+    asked = None
+    for label, a, b, depth in _intervals(marks):
+        out.append((label, since_open(a), since_open(b), depth))
+        if label == "kernel asks for Pyodide" and asked is None:
+            asked = since_open(a)
+    if asked is not None:
+        out.append(("JupyterLab's own start, until the kernel asks for Pyodide",
+                    0.0, asked, 0))
+    out.append(("kernel ready (\"Idle\" on the page)", (t_ready_ms - t_open_ms) / 1000,
+                (t_ready_ms - t_open_ms) / 1000, 0))
+    return sorted(out, key=lambda x: (x[2], x[1]))
 
 
 def cell_marks(timing: dict, t_from_ms: float) -> list[tuple[str, float]]:
     """(label, seconds) of the timed kernel steps in the worker after ``t_from_ms``."""
     origin = timing["origin"]
     marks = [m for m in timing.get("marks", []) if origin + m["t"] >= t_from_ms]
-    return [(name, (b - a) / 1000) for name, a, b in _intervals(marks)]
+    return [(("  " * depth) + name, (b - a) / 1000) for name, a, b, depth in _intervals(marks)]
 
 
 def fetch_table(timing: dict, t_ready_ms: float) -> list[tuple]:
@@ -258,7 +272,8 @@ def fetch_table(timing: dict, t_ready_ms: float) -> list[tuple]:
 
 def _kernel_worker(page):
     for w in page.workers:
-        if "comlink.worker" in w.url or "coincident.worker" in w.url:
+        if any(name in w.url for name in ("wt-kernel.worker", "comlink.worker",
+                                          "coincident.worker")):
             return w
     return None
 
@@ -363,8 +378,10 @@ def report(fig: dict, name: str, native: tuple[float, list[float]]) -> None:
           f"({n} requests, {conditional} conditional: {ok} × 200, {not_modified} × 304; "
           f"{fig['total_bytes'] / 1e6:.1f} MB after the first cell)")
     print(f"  page open → kernel ready  {fig['kernel_ready_s']:8.1f} s")
-    for phase, secs in fig.get("phases", []):
-        print(f"    {secs:6.2f} s  {phase}")
+    if fig.get("phases"):
+        print("    when each step ended, since the page was opened (and how long it took):")
+    for phase, a, b, depth in fig.get("phases", []):
+        print(f"    {b:6.2f} s  ({b - a:5.2f} s)  {'  ' * depth}{phase}")
     if fig.get("fetches"):
         print("    the kernel worker's fetches until ready (s since the worker started;"
               " MB over the wire / body):")
@@ -384,7 +401,7 @@ def report(fig: dict, name: str, native: tuple[float, list[float]]) -> None:
     for label, b, nat in zip(PARTS, parts, native_parts):
         print(f"    {b:6.2f} s  {label:24s} (native {nat:.2f} s)")
     for label, secs in fig.get("cell_steps", []):
-        print(f"    {secs:6.2f} s  kernel: {label}")
+        print(f"    {secs:6.2f} s  {label}")
     print(f"  Ctrl+Enter → output       {fig['browser_printed_s']:8.2f} s    "
           f"(with loading the SymPy/mpmath/whittaker_teach wheels and importing them,"
           f" or waiting for the start-up file to)")

@@ -25,7 +25,9 @@
    exist only in the build, so they are never stale);
 6. runs ``jupyter lite build`` with the kernel configured for the local Pyodide
    (``pyodideUrl``) and ``disablePyPIFallback: true``: nothing is fetched from
-   outside the site at run time.
+   outside the site at run time;
+7. starts the kernel's worker with the page rather than after JupyterLab has
+   started (``lite_early_kernel.py``), so that Pyodide starts while JupyterLab does.
 
 The pages that link here are made by book/_ext/wt_lite_launch.py ("Run in the
 browser"); `lite_path(docname)` is the one mapping both use.
@@ -47,6 +49,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import fetch_lite  # noqa: E402
+import lite_early_kernel  # noqa: E402
 import lite_notebooks as ln  # noqa: E402
 import pyc_lite  # noqa: E402
 
@@ -331,8 +334,9 @@ def lite_config() -> dict:
             "disabledExtensions": ["@jupyterlab/apputils-extension:announcements"],
             "litePluginSettings": {
                 KERNEL_PLUGIN: {
-                    # the local copy (the build's pyodide addon sets the same)
-                    "pyodideUrl": "./static/pyodide/pyodide.mjs",
+                    # the local copy, through the loader that hands over the
+                    # Pyodide started with the page (lite_early_kernel.py)
+                    "pyodideUrl": lite_early_kernel.PYODIDE_URL,
                     "disablePyPIFallback": True,
                     "loadPyodideOptions": {"packages": list(PRELOAD),
                                            "env": {"PYTHONSTARTUP": STARTUP_PATH}},
@@ -403,6 +407,8 @@ def build(out: Path, work: Path, pyodide_version: str = fetch_lite.PYODIDE_VERSI
                     cwd=work, env=env)
     for stray in out.glob(".jupyterlite.doit.db*"):
         stray.unlink()
+    lite_early_kernel.install(out, lite_config()["jupyter-config-data"]["litePluginSettings"]
+                              [KERNEL_PLUGIN]["loadPyodideOptions"])
     check_config(out)
     print(f"build_lite: {len(docs)} notebooks, {len(lock['packages'])} wheels → {out}")
     return docs
@@ -412,7 +418,7 @@ def check_config(out: Path) -> None:
     """Fail the build if the kernel is not set to the local Pyodide without PyPI."""
     config = json.loads((out / "jupyter-lite.json").read_text())["jupyter-config-data"]
     kernel = config.get("litePluginSettings", {}).get(KERNEL_PLUGIN, {})
-    if kernel.get("pyodideUrl") != "./static/pyodide/pyodide.mjs" \
+    if kernel.get("pyodideUrl") != lite_early_kernel.PYODIDE_URL \
             or kernel.get("disablePyPIFallback") is not True \
             or kernel.get("loadPyodideOptions", {}).get("packages") != list(PRELOAD):
         sys.exit(f"build_lite: {out}/jupyter-lite.json does not point the kernel at the "

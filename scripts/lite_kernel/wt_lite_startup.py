@@ -23,10 +23,19 @@ if __name__ == "wt_lite_startup":
         import io
         import warnings
 
-        await asyncio.sleep(delay_s)         # let the kernel report ready first
         try:
+            import js
             import pyodide_js
             from pyodide.ffi import to_js
+
+            # In the worker started with the page (lite/static/pyodide/
+            # wt-kernel.worker.mjs) this file runs before JupyterLab has even asked
+            # for the kernel: wait until it has, or the import below (a second of
+            # work that nothing can interrupt) would keep the kernel from starting.
+            asked = getattr(js, "wtKernelAsked", None)
+            if asked is not None:
+                await asked
+            await asyncio.sleep(delay_s)     # let the kernel report ready first
 
             await pyodide_js.loadPackage(to_js(list(PACKAGES)))
             sink = io.StringIO()

@@ -28,6 +28,7 @@ LITE = SITE / "lite"
 sys.path.insert(0, str(ROOT / "scripts"))
 
 import build_lite  # noqa: E402
+import lite_early_kernel  # noqa: E402
 import lite_notebooks  # noqa: E402
 import pyc_lite  # noqa: E402
 
@@ -58,7 +59,9 @@ def _page_of(doc: str) -> str:
 # ------------------------------------------------------------------ static checks
 def test_kernel_uses_the_local_pyodide_and_no_pypi():
     settings = _config()["litePluginSettings"][build_lite.KERNEL_PLUGIN]
-    assert settings["pyodideUrl"] == "./static/pyodide/pyodide.mjs"
+    # the local Pyodide, through the loader that hands over the early one
+    assert settings["pyodideUrl"] == "./static/pyodide/wt-pyodide.mjs"
+    assert 'from "./pyodide.mjs"' in (PYODIDE / "wt-pyodide.mjs").read_text()
     assert settings["disablePyPIFallback"] is True
     for url in settings.get("pipliteUrls", []):
         assert url.startswith("./"), url
@@ -130,6 +133,33 @@ def test_the_kernel_start_up_file_is_served_and_set():
         else:
             sys.modules["wt_lite_startup"] = saved
     assert calls == [1] and set(ns) == {"__name__", "__builtins__"}
+
+
+def test_the_kernel_worker_is_started_with_the_page():
+    """lab/index.html loads wt-early-kernel.js before JupyterLab; it starts
+    wt-kernel.worker.mjs, which imports the kernel's own (comlink) worker file as
+    served and starts Pyodide with exactly the kernel's loadPyodideOptions; the
+    kernel's loader (wt-pyodide.mjs) hands that Pyodide over only if the options
+    match (scripts/lite_early_kernel.py)."""
+    html = (LITE / "lab" / "index.html").read_text()
+    # (before the inline script that imports config-utils.js, which starts JupyterLab)
+    assert html.index(lite_early_kernel.TAG) < html.index("jupyter-config-data") \
+        < html.index("config-utils.js")
+    worker = lite_early_kernel.kernel_worker(LITE)
+    assert (LITE / lite_early_kernel.KERNEL_STATIC / worker).is_file()
+    early = (PYODIDE / "wt-kernel.worker.mjs").read_text()
+    imported = re.search(r'^import "([^"]+)";', early, re.M).group(1)
+    assert (PYODIDE / imported).resolve() == (LITE / lite_early_kernel.KERNEL_STATIC
+                                              / worker).resolve()
+    options = json.loads(re.search(r"^const OPTIONS = (.*);$", early, re.M).group(1))
+    assert options == _config()["litePluginSettings"][build_lite.KERNEL_PLUGIN][
+        "loadPyodideOptions"]
+    page_script = (LITE / lite_early_kernel.PAGE_SCRIPT).read_text()
+    assert f"/static/{worker}" in page_script and "wt-kernel.worker.mjs" in page_script
+    for path in (LITE / lite_early_kernel.PAGE_SCRIPT, PYODIDE / "wt-kernel.worker.mjs",
+                 PYODIDE / "wt-pyodide.mjs"):
+        assert "__KERNEL_WORKER__" not in path.read_text()
+        assert "__OPTIONS__" not in path.read_text()
 
 
 def test_the_served_ipython_imports_its_terminal_only_when_asked():
@@ -390,6 +420,63 @@ def test_chapter_4_runs_in_the_browser(lite):
     latex.last.scroll_into_view_if_needed()
     latex.last.locator("mjx-container").first.wait_for(timeout=60_000)
     assert out.locator("mjx-merror").count() == 0
+    assert lite.outside == [], lite.outside
+
+
+_WORKER_MARKS_JS = ("() => performance.getEntriesByType('mark')"
+                    ".filter(m => m.name.startsWith('wt:')).map(m => m.name.slice(3))")
+
+
+def _kernel_workers(lab):
+    return [w for w in lab.workers
+            if "wt-kernel.worker" in w.url or "comlink.worker" in w.url]
+
+
+@pytest.mark.browser
+@pytest.mark.slow
+def test_the_kernel_takes_the_worker_started_with_the_page(lite):
+    """The kernel's worker is the one wt-early-kernel.js started with the page: one
+    Pyodide worker, not two; its early steps ran and the kernel took that Pyodide
+    with no "starting again" warning; a cell runs. After a restart the new kernel
+    gets a worker of its own (the early one is given once) and runs a cell too."""
+    messages = []
+    lab = lite.launch("book/04-generalized-whittaker.html")
+    lab.on("console", lambda m: messages.append(m.text))
+    wait_notebook(lab)
+    wait_kernel_idle(lab)
+    workers = _kernel_workers(lab)
+    assert [w.url.rsplit("/", 1)[-1] for w in workers] == ["wt-kernel.worker.mjs"]
+    marks = workers[0].evaluate(_WORKER_MARKS_JS)
+    for step in ("early: loadPyodide, with the kernel's packages end",
+                 "early: import piplite, pyodide_kernel (IPython) end",
+                 "kernel asks for Pyodide end"):
+        assert step in marks, marks
+    assert marks.index("early: import piplite, pyodide_kernel (IPython) end") \
+        < marks.index("kernel asks for Pyodide end")
+
+    def run_first_cell(code, expect):
+        cell = _notebook(lab).locator(".jp-CodeCell").first
+        cell.locator(".cm-content").click()
+        lab.keyboard.press("Control+A")
+        lab.keyboard.insert_text(code)
+        lab.keyboard.press("Control+Enter")
+        cell.locator(".jp-OutputArea").get_by_text(expect).wait_for(timeout=120_000)
+
+    run_first_cell("import sys; print('RAN', 'pyodide_kernel' in sys.modules)", "RAN True")
+    lab.locator(".jp-Toolbar-item[data-jp-item-name='restart'] button, "
+                "button[data-command='notebook:restart-kernel'], "
+                "jp-button[data-command='notebook:restart-kernel']").first.click()
+    lab.locator(".jp-Dialog .jp-mod-accept").click()
+    deadline = time.monotonic() + KERNEL_READY_S
+    while time.monotonic() < deadline and not any(
+            "comlink.worker" in w.url for w in _kernel_workers(lab)):
+        lab.wait_for_timeout(200)
+    # the early worker is ended with the old kernel; the new one is the kernel's own
+    assert [w.url.rsplit("/", 1)[-1].split(".")[0] for w in _kernel_workers(lab)] \
+        == ["comlink"], [w.url for w in lab.workers]
+    wait_kernel_idle(lab)
+    run_first_cell("print('AGAIN', 6 * 7)", "AGAIN 42")
+    assert not [m for m in messages if m.startswith("whittaker-teach:")], messages
     assert lite.outside == [], lite.outside
 
 
