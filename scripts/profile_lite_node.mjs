@@ -8,7 +8,7 @@
 // own `import pyodide_kernel` (IPython, jedi, ...), then loading and importing
 // sympy and whittaker_teach and deriving the sledge. With "importtime", Python's
 // -X importtime report (stderr) for the whole run.
-import { readFileSync } from "node:fs";
+import { existsSync, readdirSync, readFileSync } from "node:fs";
 import { pathToFileURL } from "node:url";
 import path from "node:path";
 
@@ -16,10 +16,16 @@ const dir = path.resolve(process.argv[2] || "_build/html/lite/static/pyodide") +
 const importtime = process.argv[3] === "importtime";
 const KERNEL = ["micropip", "piplite", "ipykernel", "comm", "pyodide-kernel", "jedi", "ipython"];
 const t = () => performance.now() / 1000;
+// Pyodide's own files: beside the lock, or in the site's content-named folder
+// (static/pyodide-core-<hash>/, scripts/lite_early_kernel.py)
+const core = existsSync(dir + "pyodide.mjs") ? dir : path.resolve(dir, "..",
+  readdirSync(path.resolve(dir, "..")).find((n) => n.startsWith("pyodide-core-")) || "") + "/";
 try {
-  const { loadPyodide } = await import(pathToFileURL(dir + "pyodide.mjs").href);
+  const { loadPyodide } = await import(pathToFileURL(core + "pyodide.mjs").href);
   let t0 = t();
-  const py = await loadPyodide({ indexURL: dir, args: importtime ? ["-X", "importtime"] : [],
+  const py = await loadPyodide({ indexURL: core, lockFileURL: dir + "pyodide-lock.json",
+                                 packageBaseUrl: dir,
+                                 args: importtime ? ["-X", "importtime"] : [],
                                  stdout: (s) => console.log(s), stderr: (s) => console.error(s) });
   console.log(`loadPyodide               ${(t() - t0).toFixed(2)} s`);
   t0 = t();

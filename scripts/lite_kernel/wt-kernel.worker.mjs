@@ -10,6 +10,7 @@
 // which fills in the kernel's worker and the options (the kernel's
 // loadPyodideOptions in jupyter-lite.json).
 import "../../extensions/@jupyterlite/pyodide-kernel-extension/static/__KERNEL_WORKER__";
+import { startPyodide } from "./wt-pyodide.mjs";
 
 const OPTIONS = __OPTIONS__;
 const copy = (value) => JSON.parse(JSON.stringify(value));   // (loadPyodide may change its options)
@@ -23,13 +24,11 @@ self.wtEarlyPyodide = {
   options: { indexURL: new URL("./", import.meta.url).href, ...copy(OPTIONS) },
   kernelAsked,
   ready: (async () => {
-    const pyodide = await step("early: loadPyodide, with the kernel's packages", async () => {
-      const { loadPyodide } = await import("./pyodide.mjs");
-      return await loadPyodide({
+    const pyodide = await step("early: loadPyodide, with the kernel's packages", () =>
+      startPyodide({
         indexURL: new URL("./", import.meta.url).href, ...copy(OPTIONS),
         stdout: (text) => console.log(text), stderr: (text) => console.error(text),
-      });
-    });
+      }));
     await step("early: import piplite, pyodide_kernel (IPython)", () =>
       pyodide.runPythonAsync("import piplite.piplite\nimport pyodide_kernel"));
     return pyodide;

@@ -15,6 +15,7 @@ import os
 import re
 import shutil
 import sys
+import tempfile
 import time
 import zipfile
 from pathlib import Path
@@ -61,12 +62,18 @@ def test_kernel_uses_the_local_pyodide_and_no_pypi():
     settings = _config()["litePluginSettings"][build_lite.KERNEL_PLUGIN]
     # the local Pyodide, through the loader that hands over the early one
     assert settings["pyodideUrl"] == "./static/pyodide/wt-pyodide.mjs"
-    assert 'from "./pyodide.mjs"' in (PYODIDE / "wt-pyodide.mjs").read_text()
+    core = lite_early_kernel.core_dir(LITE)
+    assert f'from "../{core.name}/pyodide.mjs"' in (PYODIDE / "wt-pyodide.mjs").read_text()
     assert settings["disablePyPIFallback"] is True
     for url in settings.get("pipliteUrls", []):
         assert url.startswith("./"), url
+    # Pyodide's own files in their content-named folder, the lock and wheels beside
+    # the loader (scripts/lite_early_kernel.py)
     for name in ("pyodide.mjs", "pyodide.asm.mjs", "pyodide.asm.wasm", "python_stdlib.zip"):
-        assert (PYODIDE / name).is_file(), name
+        assert (core / name).is_file(), name
+        assert not (PYODIDE / name).exists(), name
+    assert core.name == lite_early_kernel.core_name(
+        [core / n for n in lite_early_kernel.CORE_FILES])
 
 
 def test_lock_lists_exactly_the_served_wheels_with_their_sha256():
@@ -178,14 +185,18 @@ def test_served_modules_are_precompiled_for_the_served_pyodide():
     Pyodide that the site serves (asked from that Pyodide itself, under node)."""
     if not shutil.which("node"):
         pytest.skip("node is needed to start the served Pyodide outside a browser")
-    info = pyc_lite.pyodide_info(PYODIDE)
+    core = lite_early_kernel.core_dir(LITE)
+    with tempfile.TemporaryDirectory() as tmp:     # Pyodide's files and the site's lock
+        for f in [*core.iterdir(), PYODIDE / "pyodide-lock.json"]:
+            os.symlink(f, Path(tmp) / f.name)
+        info = pyc_lite.pyodide_info(Path(tmp))
     magic = bytes.fromhex(info["magic"])
     lock = json.loads((PYODIDE / "pyodide-lock.json").read_text())
     problems = []
     for entry in lock["packages"].values():
         problems += pyc_lite.check_wheel(PYODIDE / entry["file_name"], magic,
                                          info["cache_tag"])
-    problems += pyc_lite.check_stdlib(PYODIDE / "python_stdlib.zip", magic)
+    problems += pyc_lite.check_stdlib(core / "python_stdlib.zip", magic)
     assert problems == [], problems[:10]
     # SymPy's and mpmath's own test suites are not served
     for name in ("sympy", "mpmath"):

@@ -1,7 +1,8 @@
 """scripts/serve.py: the static server of the built site (tests, bench, `make serve`).
 
 Its caching headers are what make a second visit to the in-browser site re-use
-the browser's copies (no download, V8's cached wasm compilation) while never
+the browser's copies (no download; for Pyodide's content-named folder, no
+request at all, so that V8 re-uses its compilation of the wasm) while never
 serving a stale copy of a rebuilt file (a stale wheel would fail Pyodide's
 sha256 check against the new pyodide-lock.json).
 """
@@ -50,6 +51,23 @@ def test_files_are_sent_with_no_cache_and_a_content_etag(site):
     assert headers["Content-Type"] == "application/zip"
     assert _get(base + "m.wasm")[1]["Content-Type"] == "application/wasm"
     assert _get(base + "lite/")[1]["Cache-Control"] == "no-cache"
+
+
+def test_only_the_content_named_pyodide_folder_is_kept_for_good(site):
+    root, base = site
+    core = root / "lite" / "static" / "pyodide-core-0123456789ab"
+    core.mkdir(parents=True)
+    (core / "pyodide.asm.wasm").write_bytes(b"\0asm")
+    (root / "lite" / "static" / "pyodide").mkdir()
+    (root / "lite" / "static" / "pyodide" / "pyodide-lock.json").write_text("{}")
+    (root / "lite" / "static" / "pyodide-core-old").mkdir()
+    (root / "lite" / "static" / "pyodide-core-old" / "x.js").write_text("")
+    headers = _get(base + "lite/static/pyodide-core-0123456789ab/pyodide.asm.wasm")[1]
+    assert headers["Cache-Control"] == "max-age=31536000, immutable"
+    assert headers["ETag"]
+    for rel in ("lite/static/pyodide/pyodide-lock.json", "lite/static/pyodide-core-old/x.js",
+                "m.wasm"):
+        assert _get(base + rel)[1]["Cache-Control"] == "no-cache", rel
 
 
 def test_the_server_speaks_http_1_1(site):

@@ -27,6 +27,8 @@ def fake_site(tmp_path: Path, workers=("comlink.worker.0123abcd.js",), page=PAGE
     for name in workers:
         (static / name).write_text("// the kernel's worker\n")
     (out / "static" / "pyodide").mkdir(parents=True)
+    for name in lek.CORE_FILES:
+        (out / "static" / "pyodide" / name).write_bytes(f"pyodide {name}".encode())
     (out / "lab").mkdir()
     (out / "lab" / "index.html").write_text(page)
     config = {"jupyter-config-data": {"litePluginSettings": {lek.KERNEL_PLUGIN: {
@@ -76,3 +78,22 @@ def test_check_names_options_that_differ_from_the_kernels(tmp_path):
     other = dict(OPTIONS, packages=["micropip"])
     with pytest.raises(SystemExit, match="loadPyodideOptions are not"):
         lek.check(out, other)
+
+
+def test_pyodides_own_files_move_to_a_folder_named_by_their_content(tmp_path):
+    out = fake_site(tmp_path)
+    lek.install(out, OPTIONS)
+    core = lek.core_dir(out)
+    assert core.name == lek.core_name([core / n for n in lek.CORE_FILES])
+    assert sorted(p.name for p in core.iterdir()) == sorted(lek.CORE_FILES)
+    assert not [n for n in lek.CORE_FILES if (out / "static/pyodide" / n).exists()]
+    assert f'from "../{core.name}/pyodide.mjs"' in (out / lek.LOADER).read_text()
+    # another stdlib zip, another folder
+    other = fake_site(tmp_path / "other")
+    (other / "static/pyodide/python_stdlib.zip").write_bytes(b"another stdlib")
+    lek.install(other, OPTIONS)
+    assert lek.core_dir(other).name != core.name
+    # a file changed after the build is caught
+    (core / "pyodide.asm.wasm").write_bytes(b"changed")
+    with pytest.raises(SystemExit, match="does not hold exactly the files"):
+        lek.check(out, OPTIONS)
