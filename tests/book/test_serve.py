@@ -53,7 +53,7 @@ def test_files_are_sent_with_no_cache_and_a_content_etag(site):
     assert _get(base + "lite/")[1]["Cache-Control"] == "no-cache"
 
 
-def test_only_the_content_named_pyodide_folder_is_kept_for_good(site):
+def test_only_content_named_files_are_kept_for_good(site):
     root, base = site
     core = root / "lite" / "static" / "pyodide-core-0123456789ab"
     core.mkdir(parents=True)
@@ -62,11 +62,22 @@ def test_only_the_content_named_pyodide_folder_is_kept_for_good(site):
     (root / "lite" / "static" / "pyodide" / "pyodide-lock.json").write_text("{}")
     (root / "lite" / "static" / "pyodide-core-old").mkdir()
     (root / "lite" / "static" / "pyodide-core-old" / "x.js").write_text("")
-    headers = _get(base + "lite/static/pyodide-core-0123456789ab/pyodide.asm.wasm")[1]
-    assert headers["Cache-Control"] == "max-age=31536000, immutable"
-    assert headers["ETag"]
+    ext = root / "lite" / "extensions" / "@jupyterlite" / "kernel" / "static"
+    ext.mkdir(parents=True)
+    (root / "lite" / "build").mkdir()
+    for name in ("1031.b91a70b.js", "bundle.js", "1031.js"):
+        (root / "lite" / "build" / name).write_text("")
+    for name in ("393.d0cf8b3e64df6b99.js", "style.js"):
+        (ext / name).write_text("")
+    for rel in ("lite/static/pyodide-core-0123456789ab/pyodide.asm.wasm",
+                "lite/build/1031.b91a70b.js",
+                "lite/extensions/@jupyterlite/kernel/static/393.d0cf8b3e64df6b99.js"):
+        headers = _get(base + rel)[1]
+        assert headers["Cache-Control"] == "max-age=31536000, immutable", rel
+        assert headers["ETag"]
     for rel in ("lite/static/pyodide/pyodide-lock.json", "lite/static/pyodide-core-old/x.js",
-                "m.wasm"):
+                "m.wasm", "lite/build/bundle.js", "lite/build/1031.js",
+                "lite/extensions/@jupyterlite/kernel/static/style.js"):
         assert _get(base + rel)[1]["Cache-Control"] == "no-cache", rel
 
 
