@@ -375,16 +375,16 @@ def report(fig: dict, name: str, native: tuple[float, list[float]]) -> None:
     n, ok, not_modified, conditional = fig["requests_to_ready"]
     print(f"\n{name} visit")
     print(f"  bytes served to ready     {fig['bytes_to_ready'] / 1e6:8.1f} MB   "
-          f"({n} requests, {conditional} conditional: {ok} × 200, {not_modified} × 304; "
-          f"{fig['total_bytes'] / 1e6:.1f} MB after the first cell)")
+          f"({n} requests, {conditional} conditional: {ok} × 200, {not_modified} × 304;")
+    print(f"{'':38s}{fig['total_bytes'] / 1e6:.1f} MB after the first cell)")
     print(f"  page open → kernel ready  {fig['kernel_ready_s']:8.1f} s")
     if fig.get("phases"):
         print("    when each step ended, since the page was opened (and how long it took):")
     for phase, a, b, depth in fig.get("phases", []):
         print(f"    {b:6.2f} s  ({b - a:5.2f} s)  {'  ' * depth}{phase}")
     if fig.get("fetches"):
-        print("    the kernel worker's fetches until ready (s since the worker started;"
-              " MB over the wire / body):")
+        print("    the kernel worker's fetches until ready (s since the worker started;\n"
+              "    MB over the wire / body):")
         for fname, a, b, transfer, body in fig["fetches"]:
             print(f"      {a:6.2f} → {b:6.2f}  {transfer:6.2f} / {body:6.2f}  {fname}")
         print(f"      (and {fig['drive_calls']} DriveFS calls to /api/drive)")
@@ -392,19 +392,18 @@ def report(fig: dict, name: str, native: tuple[float, list[float]]) -> None:
     native_s, native_parts = native
     warm = parts[0] < 0.05
     print(f"  first derivation cell     {cell:8.2f} s    in the browser (in-cell timer)"
-          f"  = {cell / native_s:.1f} × native" + (" (not like for like: see below)"
-                                                   if warm else ""))
+          f" = {cell / native_s:.1f} × native" + (" (*)" if warm else ""))
     if warm:
-        print("    (SymPy and whittaker_teach were already imported by the kernel's start-up"
-              " file in the background; the cell, run right after \"Idle\", waited for"
-              " that: see Ctrl+Enter → output)")
+        print("    (*) not like for like: SymPy and whittaker_teach were already imported by\n"
+              "    the kernel's start-up file in the background; the cell, run right after\n"
+              "    \"Idle\", waited for that: see Ctrl+Enter → output")
     for label, b, nat in zip(PARTS, parts, native_parts):
         print(f"    {b:6.2f} s  {label:24s} (native {nat:.2f} s)")
     for label, secs in fig.get("cell_steps", []):
         print(f"    {secs:6.2f} s  {label}")
     print(f"  Ctrl+Enter → output       {fig['browser_printed_s']:8.2f} s    "
-          f"(with loading the SymPy/mpmath/whittaker_teach wheels and importing them,"
-          f" or waiting for the start-up file to)")
+          f"(with loading and importing SymPy, mpmath and")
+    print(f"{'':38s}whittaker_teach, or waiting for the start-up file to)")
     print(f"  Ctrl+Enter → typeset      {fig['browser_wall_s']:8.2f} s    (and MathJax)")
     print(f"  requests outside 127.0.0.1 {fig['outside_requests']:7d}")
 
