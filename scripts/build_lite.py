@@ -58,7 +58,7 @@ ROOT = fetch_lite.ROOT
 OWN_SYSTEM = "book/your-own-system"
 #: the JupyterLite application the launch buttons open
 LITE_APP = "lab/index.html"
-KERNEL_PLUGIN = "@jupyterlite/pyodide-kernel-extension:kernel"
+KERNEL_PLUGIN = lite_early_kernel.KERNEL_PLUGIN
 #: the kernel's own wheels (shipped in its labextension's pypi/ folder), served
 #: from the Pyodide folder and listed in the lock like the others
 KERNEL_WHEELS = ("piplite", "pyodide_kernel", "ipykernel")
